@@ -1,0 +1,1 @@
+"""Bearing-analysis solvers; they share only :mod:`hertz` and :mod:`kinematics`."""

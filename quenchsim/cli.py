@@ -1,0 +1,87 @@
+"""The `quenchsim` command line: `run | mesh | cct | bath | sweep | report | validate | bench | view | bearings`.
+
+Commands are registered in ``COMMANDS`` (name -> module with ``configure(parser)`` and
+``run(args) -> int``); each module is imported only when its command is used, so a slow
+import (pyvista, dask) never delays another command.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import importlib.util
+import json
+import sys
+
+from quenchsim.errors import QuenchsimError
+
+COMMANDS: dict[str, tuple[str, str]] = {
+    "run": ("quenchsim.commands.run", "run one case and condition, write VTK/probes/summary"),
+    "mesh": ("quenchsim.commands.mesh", "build and write the section mesh of a case"),
+    "cct": ("quenchsim.commands.cct", "plot the CCT diagram implied by a material's kinetics"),
+    "bath": ("quenchsim.commands.bath", "show the bath model: local velocities and HTC(T) per segment"),
+    "sweep": ("quenchsim.commands.sweep", "run a parameter sweep on Dask distributed"),
+    "report": ("quenchsim.commands.report", "HTML/Markdown report of run or sweep directories"),
+    "validate": ("quenchsim.commands.validate", "regenerate reports/ (validation + benchmarks)"),
+    "bench": ("quenchsim.commands.bench", "benchmarks of the quench chain"),
+    "view": ("quenchsim.commands.view", "off-screen render of a run's final field to PNG"),
+}
+
+
+def _available(module: str) -> bool:
+    try:
+        return importlib.util.find_spec(module) is not None
+    except ModuleNotFoundError:
+        return False
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="quenchsim", description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", required=True)
+    argv = sys.argv[1:]
+    for name, (module, help_text) in COMMANDS.items():
+        if not _available(module):
+            continue
+        p = sub.add_parser(name, help=help_text)
+        # import only the command being run (keeps `quenchsim --help` and other verbs fast)
+        if name in argv[:1]:
+            importlib.import_module(module).configure(p)
+        p.set_defaults(_module=module)
+
+    from quenchsim.bearings.commands import VERBS
+
+    bearings = sub.add_parser("bearings", help="bearing-analysis solvers (one JSON object with --json)")
+    bsub = bearings.add_subparsers(dest="verb", required=True)
+    for verb, module in VERBS.items():
+        if not _available(module):
+            continue
+        p = bsub.add_parser(verb)
+        if argv[:2] == ["bearings", verb]:
+            importlib.import_module(module).configure(p)
+        p.add_argument("--json", action="store_true", help="print one JSON object on stdout")
+        p.set_defaults(_bearing_module=module)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    if argv is not None:
+        sys.argv = [sys.argv[0], *argv]
+    parser = build_parser()
+    args = parser.parse_args()
+    try:
+        if getattr(args, "_bearing_module", None):
+            result = importlib.import_module(args._bearing_module).run(args)
+            if args.json:
+                print(json.dumps(result, default=float))
+            else:
+                for key, value in result.items():
+                    print(f"{key}: {value}")
+            return 0
+        return int(importlib.import_module(args._module).run(args) or 0)
+    except QuenchsimError as exc:
+        print(f"quenchsim: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,1 @@
+"""Handlers of the top-level CLI commands (argument parsing + calls into the library)."""

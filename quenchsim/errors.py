@@ -1,0 +1,29 @@
+"""User-facing errors: every message names the field, the value and what is allowed."""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class QuenchsimError(Exception):
+    """Base class of every error a user can cause; the CLI prints it on one line and exits 2."""
+
+
+class InputError(QuenchsimError, ValueError):
+    """A bad input value: ``InputError("geometry.od_mm", 10.0, "must exceed geometry.id_mm = 20")``."""
+
+    def __init__(self, field: str, value: Any, allowed: str) -> None:
+        self.field = field
+        self.value = value
+        self.allowed = allowed
+        super().__init__(f"{field} = {value!r}: {allowed}")
+
+
+class SolverError(QuenchsimError, RuntimeError):
+    """A solver that did not converge; the message says where it stopped."""
+
+
+def require(condition: bool, field: str, value: Any, allowed: str) -> None:
+    """Raise :class:`InputError` unless ``condition`` holds."""
+    if not condition:
+        raise InputError(field, value, allowed)
