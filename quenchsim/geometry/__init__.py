@@ -1,0 +1,1 @@
+"""Axisymmetric (r, z) ring sections built with gmsh, with a named physical group per boundary segment."""
