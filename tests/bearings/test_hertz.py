@@ -1,0 +1,84 @@
+"""Hertz contact: closed forms, the exact ellipticity equation, stiffness identities, bad input."""
+
+import math
+
+import pytest
+from scipy.special import ellipe, ellipk
+
+from quenchsim.bearings import hertz
+from quenchsim.errors import InputError
+
+STEEL_E, STEEL_NU = 2.08e11, 0.3
+
+
+def test_sphere_on_flat_closed_form():
+    r, Q = 0.005, 100.0
+    c = hertz.point_contact(Q, r, r, 1e12, 1e12, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    e_star = hertz.effective_modulus_Pa(STEEL_E, STEEL_NU, STEEL_E, STEEL_NU) / 2.0
+    a = (3.0 * Q * r / (4.0 * e_star)) ** (1.0 / 3.0)  # Johnson 1985 eq. 4.22
+    assert c.a_m == pytest.approx(a, rel=1e-6) and c.b_m == pytest.approx(a, rel=1e-6)
+    assert c.approach_m == pytest.approx(a * a / r, rel=1e-6)
+    assert c.p_max_Pa == pytest.approx(3.0 * Q / (2.0 * math.pi * a * a), rel=1e-6)
+    assert c.stiffness_N_m15 == pytest.approx(4.0 / 3.0 * e_star * math.sqrt(r), rel=1e-6)
+
+
+@pytest.mark.parametrize("ratio", [1.0 + 1e-7, 1.001, 1.7, 12.0, 310.0, 1e5])
+def test_ellipticity_solves_hertz_equation(ratio):
+    k = hertz.ellipticity_from_radius_ratio(ratio)
+    m = 1.0 - 1.0 / k**2
+    K, E = ellipk(m), ellipe(m)
+    if ratio - 1.0 > 1e-4:
+        assert (k * k * E - K) / (K - E) == pytest.approx(ratio, rel=1e-9)
+    if 1.5 < ratio <= 100.0:  # Brewe & Hamrock (1977) fit k ~ 1.0339 ratio^0.636 (range 1..100, few %)
+        assert k == pytest.approx(1.0339 * ratio**0.636, rel=0.04)
+
+
+@pytest.mark.parametrize("load", [10.0, 500.0, 5000.0])
+def test_stiffness_matches_load_deflection(load):
+    radii = (0.004, 0.004, 0.0125, -0.00416)  # ball on an inner raceway
+    c = hertz.point_contact(load, *radii, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    assert load == pytest.approx(c.stiffness_N_m15 * c.approach_m**1.5, rel=1e-10)
+    assert c.stiffness_N_m15 == pytest.approx(
+        hertz.point_contact_stiffness(*radii, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU), rel=1e-12)
+    # the pressure integrates to the load: Q = (2/3) pi a b p_max
+    assert 2.0 / 3.0 * math.pi * c.a_m * c.b_m * c.p_max_Pa == pytest.approx(load, rel=1e-12)
+    assert c.major_axis == "y"  # groove is conformal across the rolling direction
+    # swapping x and y only rotates the ellipse
+    s = hertz.point_contact(load, radii[1], radii[0], radii[3], radii[2], STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    assert (s.a_m, s.b_m, s.major_axis) == (pytest.approx(c.a_m), pytest.approx(c.b_m), "x")
+
+
+def test_ball_race_series_stiffness():
+    s = hertz.ball_race_stiffness(0.0079375, 0.0335, 0.0, 0.515, 0.525, STEEL_E, STEEL_NU)
+    Q = 300.0
+    total = (Q / s.inner_N_m15) ** (2 / 3) + (Q / s.outer_N_m15) ** (2 / 3)
+    assert total == pytest.approx((Q / s.combined_N_m15) ** (2 / 3), rel=1e-12)
+    same = hertz.ball_race_stiffness(0.0079375, 0.0335, 0.0, 0.52, 0.52, STEEL_E, STEEL_NU)
+    assert same.outer_N_m15 > same.inner_N_m15  # equal grooves: the concave outer race is stiffer
+
+
+def test_line_contact_closed_form_and_shear():
+    lc = hertz.line_contact(1000.0, 0.01, 0.005, 1e12, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    e_star = hertz.effective_modulus_Pa(STEEL_E, STEEL_NU, STEEL_E, STEEL_NU) / 2.0
+    b = math.sqrt(4.0 * (1000.0 / 0.01) * 0.005 / (math.pi * e_star))  # Johnson eq. 4.43
+    assert lc.half_width_m == pytest.approx(b, rel=1e-9)
+    assert lc.p_max_Pa == pytest.approx(2.0 * 1e5 / (math.pi * b), rel=1e-9)
+    # textbook values of the max principal shear: 0.30 p0 at 0.78 b
+    assert lc.max_shear_Pa / lc.p_max_Pa == pytest.approx(0.300, abs=1e-3)
+    assert lc.depth_max_shear_m / b == pytest.approx(0.786, abs=1e-3)
+    # tau_1(z) = (p0/b)(z - z^2/sqrt(b^2+z^2)) is maximal there (sampled check)
+    tau = lambda z: lc.p_max_Pa / b * (z - z * z / math.sqrt(b * b + z * z))  # noqa: E731
+    z0 = lc.depth_max_shear_m
+    assert tau(z0) >= max(tau(0.95 * z0), tau(1.05 * z0))
+    assert tau(z0) == pytest.approx(lc.max_shear_Pa, rel=1e-12)
+
+
+def test_bad_input():
+    with pytest.raises(InputError, match="load_N"):
+        hertz.point_contact(-1.0, 0.004, 0.004, 0.01, -0.0042, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    with pytest.raises(InputError, match="ry1_m, ry2_m"):  # groove tighter than the ball
+        hertz.point_contact(10.0, 0.004, 0.004, 0.01, -0.0039, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    with pytest.raises(InputError, match="nu1"):
+        hertz.effective_modulus_Pa(STEEL_E, 0.6, STEEL_E, 0.3)
+    with pytest.raises(InputError, match="outer_groove_radius_ratio"):
+        hertz.ball_race_stiffness(0.008, 0.0335, 0.0, 0.515, 0.49, STEEL_E, STEEL_NU)
