@@ -1,0 +1,103 @@
+"""Precomputed r-weighted element kernels and a fixed-sparsity assembler for P2 heat conduction.
+
+For axisymmetric conduction the weak forms carry the factor r (x = r, y = z):
+
+    mass        C_ij = int rho c_p phi_i phi_j r dA
+    stiffness   K_ij = int k grad phi_i . grad phi_j r dA
+    Robin       R_ij = int_Gamma h phi_i phi_j r ds,   F_i = int_Gamma h T_inf phi_i r ds
+
+The shape-function products times ``r dA`` are computed once per mesh at every quadrature point;
+a matrix is then the contraction of a coefficient array (elements, quadrature points) with a kernel,
+summed into a CSR pattern that is also computed once (only the coefficients change in time).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+import skfem
+
+
+class FixedPatternAssembler:
+    """Sums element matrices (n_cells, n_loc, n_loc) into a CSR matrix with a precomputed pattern."""
+
+    def __init__(self, cell_dofs: np.ndarray, n_dofs: int) -> None:
+        n_loc, n_cells = cell_dofs.shape
+        rows = np.broadcast_to(cell_dofs.T[:, :, None], (n_cells, n_loc, n_loc)).ravel()
+        cols = np.broadcast_to(cell_dofs.T[:, None, :], (n_cells, n_loc, n_loc)).ravel()
+        keys = rows.astype(np.int64) * n_dofs + cols
+        unique, self._scatter = np.unique(keys, return_inverse=True)
+        self._indices = (unique % n_dofs).astype(np.int32)
+        self._indptr = np.searchsorted(unique // n_dofs, np.arange(n_dofs + 1)).astype(np.int32)
+        self.n_dofs = n_dofs
+        self.cell_dofs = cell_dofs
+
+    def matrix(self, cell_matrices: np.ndarray) -> sp.csr_matrix:
+        data = np.bincount(self._scatter, weights=cell_matrices.ravel(), minlength=self._indices.size)
+        return sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n_dofs, self.n_dofs))
+
+    def vector(self, cell_vectors: np.ndarray) -> np.ndarray:
+        """Sum (n_cells, n_loc) local vectors into a global vector."""
+        return np.bincount(self.cell_dofs.T.ravel(), weights=cell_vectors.ravel(), minlength=self.n_dofs)
+
+
+class AxisymmetricP2:
+    """Element data of r-weighted P2 conduction on a triangle mesh (metres, x = r, y = z)."""
+
+    def __init__(self, mesh: skfem.MeshTri, robin_facets: np.ndarray, intorder: int = 4) -> None:
+        element = skfem.ElementTriP2()
+        self.mesh = mesh
+        self.basis = skfem.Basis(mesh, element, intorder=intorder)
+        b = self.basis
+        self.n_dofs = b.N
+        self.phi = np.stack([np.asarray(b.basis[i][0]) for i in range(b.Nbfun)])          # (nloc, ne, nq)
+        grad = np.stack([np.asarray(b.basis[i][0].grad) for i in range(b.Nbfun)])               # (nloc, 2, ne, nq)
+        self.r_qp = np.asarray(b.global_coordinates())[0]                                 # (ne, nq)
+        self.z_qp = np.asarray(b.global_coordinates())[1]
+        self.r_dx = self.r_qp * b.dx                                                # r dA weights
+        self.mass_kernel = np.einsum("ieq,jeq,eq->eqij", self.phi, self.phi, self.r_dx, optimize=True)
+        self.stiffness_kernel = np.einsum("ideq,jdeq,eq->eqij", grad, grad, self.r_dx, optimize=True)
+        self.assembler = FixedPatternAssembler(b.element_dofs, b.N)
+
+        self.facets = np.asarray(robin_facets)
+        fb = skfem.FacetBasis(mesh, element, facets=self.facets, intorder=intorder)
+        self.facet_basis = fb
+        self.fphi = np.stack([np.asarray(fb.basis[i][0]) for i in range(fb.Nbfun)])       # (nloc, nf, nqf)
+        xf = np.asarray(fb.global_coordinates())
+        self.facet_r, self.facet_z = xf[0], xf[1]                                   # (nf, nqf)
+        self.facet_normals = fb.normals                                             # (2, nf, nqf)
+        self.facet_r_ds = self.facet_r * fb.dx
+        self.robin_kernel = np.einsum("ifq,jfq,fq->fqij", self.fphi, self.fphi, self.facet_r_ds, optimize=True)
+        self.facet_assembler = FixedPatternAssembler(fb.element_dofs, b.N)
+
+    # -- fields at quadrature points ------------------------------------------------------------
+    def at_qp(self, u: np.ndarray) -> np.ndarray:
+        """Nodal P2 field -> values at the element quadrature points, shape (ne, nq)."""
+        return np.einsum("ieq,ie->eq", self.phi, u[self.basis.element_dofs])
+
+    def at_facet_qp(self, u: np.ndarray) -> np.ndarray:
+        return np.einsum("ifq,if->fq", self.fphi, u[self.facet_basis.element_dofs])
+
+    # -- forms ----------------------------------------------------------------------------------
+    def mass(self, coefficient: np.ndarray) -> sp.csr_matrix:
+        return self.assembler.matrix(np.einsum("eq,eqij->eij", coefficient, self.mass_kernel))
+
+    def stiffness(self, coefficient: np.ndarray) -> sp.csr_matrix:
+        return self.assembler.matrix(np.einsum("eq,eqij->eij", coefficient, self.stiffness_kernel))
+
+    def load(self, source: np.ndarray) -> np.ndarray:
+        """int source phi_i r dA for a source given at quadrature points (ne, nq)."""
+        return self.assembler.vector(np.einsum("eq,ieq->ei", source * self.r_dx, self.phi))
+
+    def robin(self, h: np.ndarray) -> sp.csr_matrix:
+        return self.facet_assembler.matrix(np.einsum("fq,fqij->fij", h, self.robin_kernel))
+
+    def robin_load(self, h_times_ambient: np.ndarray) -> np.ndarray:
+        return self.facet_assembler.vector(np.einsum("fq,ifq->fi", h_times_ambient * self.facet_r_ds, self.fphi))
+
+    def integrate(self, values_qp: np.ndarray) -> float:
+        """int values r dA (times 2 pi gives the volume integral)."""
+        return float(np.sum(values_qp * self.r_dx))
+
+    def integrate_boundary(self, values_fqp: np.ndarray) -> float:
+        return float(np.sum(values_fqp * self.facet_r_ds))

@@ -1,0 +1,90 @@
+"""Tabulated heat-transfer coefficients: h(T_surface) or h(t), one table or one per boundary segment.
+
+Case-file form (``[quench.htc_table]``)::
+
+    T_C = [0, 200, 400, ...]          # surface temperature, strictly increasing
+    h_W_m2K = [4350, 8207, ...]       # >= 0
+    ambient_C = 20
+    [quench.htc_table.segments.bore]  # optional per-segment tables (same keys)
+    # or, for an HTC history:  time_s = [...], h_W_m2K = [...]
+
+Linear interpolation, constant beyond the ends.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from quenchsim.errors import InputError, require
+
+
+def _table(spec: dict[str, Any], field: str) -> tuple[str, np.ndarray, np.ndarray, float]:
+    require(isinstance(spec, dict), field, spec, "must be a table with T_C (or time_s), h_W_m2K, ambient_C")
+    if "T_C" in spec:
+        axis_key, kind = "T_C", "temperature"
+    elif "time_s" in spec:
+        axis_key, kind = "time_s", "time"
+    else:
+        raise InputError(field, sorted(spec), "needs T_C or time_s with h_W_m2K")
+    x = np.asarray(spec[axis_key], dtype=float)
+    h = np.asarray(spec.get("h_W_m2K", []), dtype=float)
+    require(x.ndim == 1 and x.size >= 1, f"{field}.{axis_key}", spec[axis_key], "must be a non-empty list")
+    require(h.shape == x.shape, f"{field}.h_W_m2K", spec.get("h_W_m2K"), f"must be a list as long as {axis_key}")
+    require(bool(np.all(np.diff(x) > 0)), f"{field}.{axis_key}", spec[axis_key], "must be strictly increasing")
+    require(bool(np.all(h >= 0)), f"{field}.h_W_m2K", spec["h_W_m2K"], "values must be >= 0")
+    ambient = spec.get("ambient_C")
+    require(isinstance(ambient, (int, float)) and not isinstance(ambient, bool), f"{field}.ambient_C", ambient,
+            "must be a number (degrees C)")
+    return kind, x, h, float(ambient)
+
+
+class TableHTC:
+    """h at boundary points from tables: ``htc(T_surface_C, time_s) -> h_W_m2K`` (vectorised)."""
+
+    def __init__(self, kinds: list[str], axes: list[np.ndarray], values: list[np.ndarray],
+                 ambients: list[float], table_of_point: np.ndarray) -> None:
+        self.kinds, self.axes, self.values = kinds, axes, values
+        self.table_of_point = table_of_point
+        self.ambient_C = np.asarray(ambients)[table_of_point]
+        self._groups = [np.flatnonzero(table_of_point == i) for i in range(len(kinds))]
+
+    def __call__(self, T_surface_C: np.ndarray, time_s: float) -> np.ndarray:
+        h = np.empty_like(T_surface_C, dtype=float)
+        flat_T, flat_h = T_surface_C.reshape(-1), h.reshape(-1)
+        for i, idx in enumerate(self._groups):
+            if self.kinds[i] == "temperature":
+                flat_h[idx] = np.interp(flat_T[idx], self.axes[i], self.values[i])
+            else:
+                flat_h[idx] = np.interp(time_s, self.axes[i], self.values[i])
+        return h
+
+
+def parse_htc_table(spec: dict[str, Any], segment_of_point: np.ndarray, field: str = "quench.htc_table") -> TableHTC:
+    """Build a :class:`TableHTC` for points labelled by segment name; per-segment tables override the default."""
+    require(isinstance(spec, dict), field, spec, "must be a table")
+    segments = spec.get("segments", {})
+    require(isinstance(segments, dict), f"{field}.segments", segments, "must be a table of segment tables")
+    base = {k: v for k, v in spec.items() if k != "segments"}
+    tables = []
+    has_default = any(k in base for k in ("T_C", "time_s"))
+    if has_default:
+        tables.append(("", _table(base, field)))
+    for name, sub in segments.items():
+        merged = {**{k: v for k, v in base.items() if k == "ambient_C"}, **sub}
+        tables.append((name, _table(merged, f"{field}.segments.{name}")))
+    which = np.full(segment_of_point.shape, -1, dtype=int)
+    if has_default:
+        which[:] = 0
+    for i, (name, _) in enumerate(tables):
+        if name:
+            which[segment_of_point == name] = i
+    missing = sorted(set(segment_of_point[which < 0]))
+    if missing:
+        raise InputError(f"{field}.segments", sorted(segments), f"no table for segments {missing} (and no default T_C/time_s)")
+    known = set(segment_of_point)
+    for name in segments:
+        require(name in known, f"{field}.segments.{name}", name, f"unknown segment; the section has {sorted(known)}")
+    return TableHTC([t[1][0] for t in tables], [t[1][1] for t in tables], [t[1][2] for t in tables],
+                    [t[1][3] for t in tables], which)
