@@ -98,11 +98,7 @@ class ThermalSolver:
             rho = props.density_kg_m3(T_qp, X)
             rho_cp = rho * props.specific_heat_J_kgK(T_qp, X)
             k = props.conductivity_W_mK(T_qp, X)
-            latent = np.zeros_like(T_qp)
-            for phase, L in props.latent_heat_J_kg.items():
-                if phase in X:
-                    latent += L(T_qp) * (X[phase] - X0.get(phase, 0.0))
-            latent *= rho
+            latent = self._latent_J_m3(T_qp, X, X0, rho)
             Ts = fe.at_facet_qp(T_iter)
             h = htc(Ts.reshape(-1), t_new).reshape(Ts.shape)
             C = fe.mass(rho_cp / dt_s)
@@ -118,9 +114,12 @@ class ThermalSolver:
         else:
             raise SolverError(f"thermal Picard iteration did not converge in {self.max_iterations} iterations "
                               f"(dt = {dt_s:g} s at t = {self.time_s:g} s; last change {change:.3g} K)")
+        # final phase state consistent with the converged temperature; the latent heat reported is
+        # the one of this state (the solve used the previous iterate's, within the Picard tolerance)
         T_qp = fe.at_qp(T_iter)
         state = self.phase_model.advance(self.phase_state, self.T_qp, T_qp, dt_s)
         X = self._fractions(state)
+        latent = self._latent_J_m3(T_qp, X, X0, props.density_kg_m3(T_qp, X))
         Ts = fe.at_facet_qp(T_iter)
         h = htc(Ts.reshape(-1), t_new).reshape(Ts.shape)
         two_pi = 2.0 * np.pi
@@ -130,6 +129,15 @@ class ThermalSolver:
         return ThermalStep(T=T_iter, phase_state=state, T_qp=T_qp, dt_s=dt_s, iterations=it,
                            max_dT_K=float(np.max(np.abs(T_iter - self.T))), max_dX=max_dX,
                            heat_out_J=heat_out, latent_J=latent_J)
+
+    def _latent_J_m3(self, T_qp: np.ndarray, X: dict[str, np.ndarray], X0: dict[str, np.ndarray],
+                     rho: np.ndarray) -> np.ndarray:
+        """Heat released per volume over the step: rho sum_i L_i(T) (X_i - X_i,0)."""
+        latent = np.zeros_like(T_qp)
+        for phase, L in self.props.latent_heat_J_kg.items():
+            if phase in X:
+                latent += L(T_qp) * (X[phase] - X0.get(phase, 0.0))
+        return rho * latent
 
     def commit(self, step: ThermalStep) -> None:
         self.T = step.T

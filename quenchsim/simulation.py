@@ -1,0 +1,315 @@
+"""The staged quench: austenitise (uniform T, stress free) -> oil quench -> air cool to room temperature.
+
+Each time step solves the thermal problem with the phase kinetics inside its fixed-point
+iteration, then (when enabled) the stress problem with the same step. The step starts small,
+grows under limits on the temperature and phase change per step, and is cut back and retried
+when an iteration does not converge (logged). Probes and VTK frames are written as they are
+produced; a run that fails keeps them and records where it stopped in ``summary.json``.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from tqdm import tqdm
+
+from quenchsim import metallurgy
+from quenchsim.case import Case
+from quenchsim.errors import InputError, QuenchsimError, SolverError
+from quenchsim.geometry import BoundaryPoints, SectionExtent, SectionMesh, mesh_profile, profile_from_case
+from quenchsim.geometry.profile import MM, Profile
+from quenchsim.io import ProbeWriter, VtkSeries
+from quenchsim.materials import load_material, thermal_properties
+from quenchsim.results import NodalProjection, depth_below, phase_statistics, time_to_temperature
+from quenchsim.thermal import AxisymmetricP2, ThermalSolver, parse_htc_table
+
+log = logging.getLogger("quenchsim")
+INTORDER = 4
+HRC_THRESHOLD = 58.0
+
+
+class _Kinetics:
+    """Adapter: the metallurgy package as the thermal solver's phase model."""
+
+    def __init__(self, kin: Any) -> None:
+        self.kin = kin
+
+    def advance(self, state: Any, T_old_C: np.ndarray, T_new_C: np.ndarray, dt_s: float) -> Any:
+        return metallurgy.advance(state, self.kin, T_old_C, T_new_C, dt_s)
+
+    def fractions(self, state: Any) -> dict[str, np.ndarray]:
+        return state.fractions
+
+
+class _SteadyHTC:
+    """A boundary HTC that depends on the surface temperature only (bath model curves)."""
+
+    def __init__(self, curves: Any) -> None:
+        self.curves = curves
+        self.ambient_C = np.asarray(curves.ambient_C)
+
+    def __call__(self, T_surface_C: np.ndarray, time_s: float) -> np.ndarray:
+        return self.curves(T_surface_C)
+
+
+def boundary_points(fe: AxisymmetricP2, section: SectionMesh) -> BoundaryPoints:
+    """The facet quadrature points of the cooled surface, labelled by segment, with arc length."""
+    seg_of_facet = np.empty(section.mesh.facets.shape[1], dtype=object)
+    for name, facets in section.boundaries.items():
+        seg_of_facet[facets] = name
+    nq = fe.facet_r.shape[1]
+    segment = np.repeat(seg_of_facet[fe.facets], nq).astype(str)
+    r, z = fe.facet_r.ravel(), fe.facet_z.ravel()
+    s = np.zeros_like(r)
+    length = np.zeros_like(r)
+    for seg in section.profile.segments:
+        idx = np.flatnonzero(segment == seg.name)
+        if seg.center is None:
+            s_seg = np.hypot(r[idx] - seg.start[0], z[idx] - seg.start[1])
+        else:
+            a0 = math.atan2(seg.start[1] - seg.center[1], seg.start[0] - seg.center[0])
+            a = np.arctan2(z[idx] - seg.center[1], r[idx] - seg.center[0])
+            radius = math.dist(seg.center, seg.start)
+            s_seg = radius * np.abs((a - a0 + np.pi) % (2 * np.pi) - np.pi)
+        # a name may cover several segments (e.g. chamfers): keep the nearest segment's values
+        near = np.hypot(*_distance_to_segment(seg, r[idx], z[idx])) < 1e-9 + 1e-6 * seg.length()
+        s[idx[near]] = s_seg[near]
+        length[idx[near]] = seg.length()
+    r0, r1, z0, z1 = section.profile.bounds()
+    return BoundaryPoints(r_m=r, z_m=z, normal_r=fe.facet_normals[0].ravel(), normal_z=fe.facet_normals[1].ravel(),
+                          segment=segment, s_m=s, segment_length_m=length,
+                          extent=SectionExtent(r_min_m=r0, r_max_m=r1, z_min_m=z0, z_max_m=z1))
+
+
+def _distance_to_segment(seg: Any, r: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    if seg.center is None:
+        d = np.subtract(seg.end, seg.start)
+        t = np.clip(((r - seg.start[0]) * d[0] + (z - seg.start[1]) * d[1]) / (d @ d), 0.0, 1.0)
+        return r - (seg.start[0] + t * d[0]), z - (seg.start[1] + t * d[1])
+    radius = math.dist(seg.center, seg.start)
+    rho = np.hypot(r - seg.center[0], z - seg.center[1])
+    return rho - radius, np.zeros_like(rho)
+
+
+def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
+    """The HTC of the quench or air stage as ``htc(T_surface, t)`` with ``ambient_C`` per point."""
+    if stage == "quench":
+        if case.get("quench.htc_model", "table") == "table":
+            return parse_htc_table(case.get("quench.htc_table"), points.segment, "quench.htc_table")
+        from quenchsim import bath
+
+        return _SteadyHTC(bath.boundary_htc(bath.parse_bath(case.get("quench.bath", {}), "quench.bath"), points))
+    if case.get("air.htc_model") == "table":
+        return parse_htc_table(case.get("air.htc_table"), points.segment, "air.htc_table")
+    from quenchsim import bath
+
+    return _SteadyHTC(bath.air_htc(points, case.number("air.temperature_C"), case.number("air.emissivity", minimum=0.0,
+                                                                                          maximum=1.0)))
+
+
+@dataclass
+class RunResult:
+    out_dir: Path
+    summary: dict[str, Any]
+    time_s: np.ndarray = field(repr=False, default_factory=lambda: np.zeros(0))
+    probe_T_C: dict[str, np.ndarray] = field(repr=False, default_factory=dict)
+
+
+class QuenchRun:
+    """Everything of one run: mesh, solvers, output writers. Use :func:`run_case`."""
+
+    def __init__(self, case: Case, out_dir: Path, progress: bool = True) -> None:
+        self.case = case
+        self.out = Path(out_dir)
+        self.out.mkdir(parents=True, exist_ok=True)
+        self.progress = progress
+        self.material = load_material(str(case.data["material"]))
+        self.T_aust = case.number("process.austenitising_temperature_C")
+        self.T_room = case.number("process.room_temperature_C")
+        self.profile: Profile = profile_from_case(case.get("geometry", {}))
+        self.section = mesh_profile(self.profile, case.number("mesh.size_mm") * MM,
+                                    case.number("mesh.surface_size_mm") * MM, case.number("mesh.surface_layer_mm") * MM,
+                                    msh_path=self.out / "mesh.msh")
+        cooled = np.concatenate([f for n, f in self.section.boundaries.items() if n != "axis"])
+        self.fe = AxisymmetricP2(self.section.mesh, cooled, intorder=INTORDER)
+        self.points = boundary_points(self.fe, self.section)
+        self.kin = metallurgy.load_kinetics(self.material, self.T_aust)
+        self.phase_model = _Kinetics(self.kin)
+        self.thermal = ThermalSolver(self.fe, thermal_properties(self.material), self.T_aust, self.phase_model,
+                                     metallurgy.initial_state(self.fe.r_qp.shape, self.kin))
+        self.projection = NodalProjection(self.section.mesh, INTORDER)
+        self._setup_probes()
+
+    def _setup_probes(self) -> None:
+        probes = self.case.get("probes", [])
+        self.probe_names = [p["name"] for p in probes]
+        pts = np.array([[p["r_mm"] * MM, p["z_mm"] * MM] for p in probes]).reshape(-1, 2)
+        for i, (r, z) in enumerate(pts):
+            if not self.profile.contains(r, z) and np.min(np.hypot(*_nearest(self.profile, r, z))) > 1e-9:
+                raise InputError(f"probes[{i}]", f"{self.probe_names[i]} at ({r / MM:g}, {z / MM:g}) mm",
+                                 "lies outside the section")
+        self.probe_matrix = self.fe.basis.probes(pts.T) if len(pts) else None
+
+    def probe_temperatures(self) -> np.ndarray:
+        return self.probe_matrix @ self.thermal.T if self.probe_matrix is not None else np.zeros(0)
+
+    def nodal_fields(self) -> dict[str, np.ndarray]:
+        nv = self.section.mesh.p.shape[1]
+        state = self.thermal.phase_state
+        data = {"temperature_C": self.thermal.T[:nv].copy()}
+        for phase, X in state.fractions.items():
+            data[phase] = self.projection(X)
+        hv = metallurgy.hardness_HV(state, self.kin)
+        data["hardness_HV"] = self.projection(hv)
+        data["hardness_HRC"] = metallurgy.hv_to_hrc(data["hardness_HV"])
+        return data
+
+    def run(self) -> RunResult:
+        case, out = self.case, self.out
+        wall0 = time.perf_counter()
+        vtk = VtkSeries(out, self.section.mesh.p, self.section.mesh.t)
+        probes = ProbeWriter(out / "probes.csv", self.probe_names)
+        times, probe_rows = [0.0], [self.probe_temperatures()]
+        probes.write(0.0, probe_rows[0])
+        vtk.write(0.0, self.nodal_fields())
+        self._last_frame_T = self.thermal.T.copy()
+        ctl = case.get("time")
+        dt = float(ctl["dt_initial_s"])
+        steps, rejected, energy_out, latent = 0, 0, 0.0, 0.0
+        frame_dT = (self.T_aust - self.T_room) / case.get("output.frames")
+        status, error = "ok", None
+        stages = [("quench", case.number("quench.time_s")), ("air", case.number("air.time_s", positive=True))]
+        try:
+            for stage, duration in stages:
+                htc = stage_htc(case, stage, self.points)
+                t_end = self.thermal.time_s + duration
+                until = case.number("air.until_max_C") if stage == "air" else -math.inf
+                bar = tqdm(total=round(duration, 3), desc=f"{case.name}[{case.condition}] {stage}", unit="s",
+                           disable=not self.progress, leave=False)
+                while self.thermal.time_s < t_end - 1e-9 and float(np.max(self.thermal.T)) > until:
+                    dt = min(dt, t_end - self.thermal.time_s)
+                    try:
+                        step = self.thermal.try_step(dt, htc)
+                    except SolverError as exc:
+                        if dt / 2 < float(ctl["dt_min_s"]):
+                            raise
+                        log.warning("%s; cutting the step to %.3g s", exc, dt / 2)
+                        dt, rejected = dt / 2, rejected + 1
+                        continue
+                    limit = max(step.max_dT_K / float(ctl["max_dT_K"]), step.max_dX / float(ctl["max_dX"]))
+                    if limit > 2.0 and dt / 2 >= float(ctl["dt_min_s"]):
+                        dt, rejected = dt / 2, rejected + 1
+                        continue
+                    self.thermal.commit(step)
+                    steps += 1
+                    energy_out += step.heat_out_J
+                    latent += step.latent_J
+                    times.append(self.thermal.time_s)
+                    probe_rows.append(self.probe_temperatures())
+                    probes.write(self.thermal.time_s, probe_rows[-1])
+                    if float(np.max(np.abs(self.thermal.T - self._last_frame_T))) >= frame_dT:
+                        vtk.write(self.thermal.time_s, self.nodal_fields())
+                        self._last_frame_T = self.thermal.T.copy()
+                    bar.update(round(step.dt_s, 3))
+                    grow = float(ctl["growth"]) if limit < 1e-12 else min(float(ctl["growth"]), 0.9 / limit)
+                    dt = float(np.clip(dt * grow, float(ctl["dt_min_s"]), float(ctl["dt_max_s"])))
+                bar.close()
+        except QuenchsimError as exc:
+            status, error = "failed", str(exc)
+            log.error("run stopped at t = %.4g s: %s", self.thermal.time_s, exc)
+        finally:
+            probes.close()
+        vtk.write(self.thermal.time_s, self.nodal_fields())
+        time_arr = np.asarray(times)
+        probe_T = {n: np.array([row[i] for row in probe_rows]) for i, n in enumerate(self.probe_names)}
+        summary = self.summary(time_arr, probe_T, wall0, steps, rejected, energy_out, latent)
+        summary["status"] = status
+        if error:
+            summary["error"] = error
+            summary["stopped_at_s"] = self.thermal.time_s
+        (out / "summary.json").write_text(json.dumps(summary, indent=2))
+        if error:
+            raise SolverError(f"{error} (results up to t = {self.thermal.time_s:.4g} s are in {out})")
+        return RunResult(out, summary, time_arr, probe_T)
+
+    # -- summary --------------------------------------------------------------------------------
+    def hardness_traverse(self, side: str, n: int = 400) -> tuple[np.ndarray, np.ndarray]:
+        """HRC along mid-width from the bore ("bore") or OD ("od") surface into the wall: (depth_mm, HRC)."""
+        r0, r1, z0, z1 = self.profile.bounds()
+        z_mid = 0.5 * (z0 + z1)
+        r_bore = _surface_r_at(self.profile, z_mid, inner=True)
+        r_od = _surface_r_at(self.profile, z_mid, inner=False)
+        wall = r_od - r_bore
+        depth = np.linspace(0.0, wall, n) * (1 - 1e-9)
+        r = r_bore + depth if side == "bore" else r_od - depth
+        nodal = self.nodal_fields()["hardness_HRC"]
+        probe = self.projection.p1.probes(np.vstack([r, np.full_like(r, z_mid)]))
+        return depth / MM, probe @ nodal
+
+    def summary(self, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wall0: float, steps: int,
+                rejected: int, energy_out: float, latent: float) -> dict[str, Any]:
+        r0, r1, z0, z1 = self.profile.bounds()
+        z_mid = 0.5 * (z0 + z1)
+        fields = self.nodal_fields()
+        hrc = fields["hardness_HRC"]
+        p1 = self.projection.p1
+        out: dict[str, Any] = {"case": self.case.name, "condition": self.case.condition}
+        out["probes"] = {n: {"t_to_500C_s": time_to_temperature(time_s, T, 500.0),
+                             "t_to_300C_s": time_to_temperature(time_s, T, 300.0),
+                             "t8_5_s": _t_between(time_s, T, 800.0, 500.0)} for n, T in probe_T.items()}
+        depth = {}
+        for side in ("bore", "od"):
+            d, h = self.hardness_traverse(side)
+            depth[f"HRC58_{side}_mid"] = depth_below(d, h, HRC_THRESHOLD)
+        surface = {}
+        for seg in self.profile.segments:
+            if seg.name == "axis" or seg.name.startswith(("chamfer", "radius")):
+                continue
+            mid = seg.points(3)[1]
+            inward = np.array([r0 + r1, z0 + z1]) / 2 - mid
+            pt = mid + 1e-6 * inward / np.linalg.norm(inward)
+            surface[f"{seg.name}_mid"] = float((p1.probes(pt.reshape(2, 1)) @ hrc)[0])
+        core_r = 0.5 * (_surface_r_at(self.profile, z_mid, True) + _surface_r_at(self.profile, z_mid, False))
+        core = float((p1.probes(np.array([[core_r], [z_mid]])) @ hrc)[0])
+        out["hardness"] = {"depth_mm": depth, "surface_HRC": surface, "core_HRC": core,
+                           "threshold_HRC": HRC_THRESHOLD, "through_hardened": bool(np.nanmin(hrc) >= HRC_THRESHOLD)}
+        out["phases_final"] = phase_statistics(self.thermal.fractions(), self.fe.r_dx)
+        out["energy"] = {"heat_extracted_J": energy_out, "latent_released_J": latent}
+        out["solver"] = {"wall_time_s": time.perf_counter() - wall0, "steps": steps, "rejected_steps": rejected,
+                         "dofs": int(self.fe.n_dofs), "elements": int(self.section.n_elements),
+                         "end_time_s": float(self.thermal.time_s)}
+        return out
+
+
+def _t_between(time_s: np.ndarray, T: np.ndarray, upper: float, lower: float) -> float | None:
+    a, b = time_to_temperature(time_s, T, upper), time_to_temperature(time_s, T, lower)
+    return None if a is None or b is None else b - a
+
+
+def _nearest(profile: Profile, r: float, z: float) -> tuple[np.ndarray, np.ndarray]:
+    poly = profile.polygon(256)
+    return poly[:, 0] - r, poly[:, 1] - z
+
+
+def _surface_r_at(profile: Profile, z: float, inner: bool) -> float:
+    """Radius where the horizontal line at height z meets the bore (inner) or the OD surface."""
+    poly = profile.polygon(512)
+    x, y = poly[:, 0], poly[:, 1]
+    x2, y2 = np.roll(x, -1), np.roll(y, -1)
+    hit = (y - z) * (y2 - z) <= 0
+    hit &= y != y2
+    rs = x[hit] + (z - y[hit]) * (x2[hit] - x[hit]) / (y2[hit] - y[hit])
+    return float(rs.min() if inner else rs.max())
+
+
+def run_case(case: Case, out_dir: str | Path, progress: bool = True) -> RunResult:
+    """Run ``case`` and write everything into ``out_dir`` (see DESIGN.md, output contract)."""
+    run = QuenchRun(case, Path(out_dir), progress=progress)
+    return run.run()
