@@ -1,0 +1,79 @@
+"""Pure transformation and hardness laws (vectorised over numpy arrays; T in degrees C).
+
+Every coefficient comes from the material file; this module holds only the equations.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+from scipy.integrate import quad
+
+R_CAL_MOL_K = 1.98720
+"""Gas constant in cal/(mol K) (CODATA 8.314462 J/(mol K) / 4.184 J/cal); Li et al. 1998 give Q in cal/mol."""
+
+KELVIN = 273.15
+
+
+def linear_formula(coefficients: Mapping[str, float], composition: Mapping[str, float]) -> float:
+    """a0 + sum_j a_j w_j + sum_k b_k sqrt(w_k) for a composition in wt %.
+
+    ``coefficients`` holds ``const`` (a0), element symbols (a_j) and ``sqrt_<element>`` (b_k);
+    elements absent from ``composition`` count as zero. This is the form of the Andrews /
+    Steven-Haynes Ms formulas, Kirkaldy/Li Bs and the logarithm of Li's composition factors.
+    """
+    total = float(coefficients.get("const", 0.0))
+    for key, a in coefficients.items():
+        if key == "const":
+            continue
+        if key.startswith("sqrt_"):
+            total += a * np.sqrt(composition.get(key[5:], 0.0))
+        else:
+            total += a * composition.get(key, 0.0)
+    return total
+
+
+def li_sigmoid_integral(X: float, exponent: float = 0.4) -> float:
+    """Li et al. (1998, Met. Trans. B 29B 661, eq. 13): S(X) = int_0^X dx / [x^{c(1-x)} (1-x)^{c x}], c = 0.4."""
+    value, _ = quad(lambda x: 1.0 / (x ** (exponent * (1.0 - x)) * (1.0 - x) ** (exponent * x)), 0.0, X, limit=200)
+    return value
+
+
+def jmak_exponent(X_start: float, X_finish: float, time_ratio: float) -> float:
+    """JMAK exponent n through two points of an isothermal curve X = 1 - exp(-(t/tau)^n).
+
+    n = ln[ln(1 - X_f) / ln(1 - X_s)] / ln(t_f / t_s), with ``time_ratio`` = t_f / t_s.
+    """
+    return float(np.log(np.log1p(-X_finish) / np.log1p(-X_start)) / np.log(time_ratio))
+
+
+def jmak_fraction(t_s: np.ndarray, tau_s: np.ndarray, n: np.ndarray) -> np.ndarray:
+    """Isothermal JMAK (Avrami) law X = 1 - exp(-(t/tau)^n)."""
+    return -np.expm1(-np.power(np.asarray(t_s, dtype=float) / tau_s, n))
+
+
+def li_rate(T_C: np.ndarray, T_upper_C: float, ln_F: float, beta_grain: float, grain_ASTM: float,
+            n_undercooling: float, Q_cal_mol: float) -> np.ndarray:
+    """1/tau_1(T) of Li et al. 1998 (eqs. 18-23): 2^{beta G} (T_u - T)^n exp(-Q/RT) / F, in 1/s.
+
+    tau_1 is the time scale of the isothermal curve t(X) = tau_1 S(X); zero at and above T_upper
+    (Ae1 for pearlite, Bs for bainite), where there is no driving force.
+    """
+    T = np.asarray(T_C, dtype=float)
+    dT = np.maximum(T_upper_C - T, 0.0)
+    return np.exp(beta_grain * grain_ASTM * np.log(2.0) - ln_F - Q_cal_mol / (R_CAL_MOL_K * (T + KELVIN))) * dT**n_undercooling
+
+
+def koistinen_marburger(T_C: np.ndarray, Ms_C: float, alpha_per_K: float) -> np.ndarray:
+    """Koistinen & Marburger (1959): fraction of austenite turned to martensite, 1 - exp(-alpha (Ms - T)) below Ms."""
+    return -np.expm1(-alpha_per_K * np.maximum(Ms_C - np.asarray(T_C, dtype=float), 0.0))
+
+
+def maynier_hv(coefficients: Mapping[str, Mapping[str, float]], composition: Mapping[str, float],
+               log10_rate_C_h: np.ndarray) -> np.ndarray:
+    """Maynier et al. (1978) hardness of one product: HV = A(w) + B(w) log10(V_r), V_r in degC/h at 700 C.
+
+    ``coefficients`` = {"base": {...}, "rate": {...}}, each a :func:`linear_formula`.
+    """
+    return linear_formula(coefficients["base"], composition) + linear_formula(coefficients["rate"], composition) * log10_rate_C_h
