@@ -1,0 +1,49 @@
+"""Reduced bath-flow model: HTC(T_surface) of every boundary point from nozzle jets, part rotation and
+oil boiling; also still-air cooling.
+
+Public API::
+
+    cfg = parse_bath(spec, field="quench.bath") -> BathConfig
+    htc = boundary_htc(cfg, points) -> BoundaryHTC        # once per stage
+    h = htc(T_surface_C)                                  # (n_points,) -> (n_points,), every iteration
+    air = air_htc(points, air_temperature_C, emissivity) -> BoundaryHTC
+
+``BoundaryHTC`` carries T_grid_C (m,), h_W_m2K (n_points, m), ambient_C, velocity_m_s, segment (n_points,)
+and the diagnostics length_m, leidenfrost_C, peak_C.
+
+The ``[quench.bath]`` table (units as suffixes; condition overrides merged in before parsing)::
+
+    quenchant = "reference_quench_oil"   # materials/quenchants/<name>.toml, a liquid (oil) file
+    oil_temperature_C = 60.0             # bulk oil; must lie below the quenchant's boiling point
+    rotation_rpm = 11.0                  # turntable speed (>= 0), default 0
+    id_jet_speed_mm_s = 1000.0           # exit speed of every "id" row without its own jet_speed_mm_s (>= 0)
+    od_jet_speed_mm_s = 5340.0           # same for "od" rows
+    turntable_open_fraction = 0.5        # share of the bottom face open to the oil (0-1), default 0.5
+    oil_swirl_fraction = 0.0             # share of the part's rotation the nearby oil follows (0-1), default 0
+    corner_carryover = 0.3               # share of a wall jet carried round a convex edge onto a face
+                                         # turned ~90 deg from the jet (0-1), default 0.3
+    T_max_C = 1100.0                     # top of the HTC(T) grid (clamped above), default 1100
+    T_step_K = 2.0                       # grid step, default 2
+
+    [quench.bath.nozzles.<row name>]     # any number of rows; the name's prefix id_/od_ gives the side
+    side = "od"                          # optional: "id" (in the bore, aimed outward) or "od" (aimed inward)
+    diameter_mm = 10.0                   # nozzle exit diameter (> 0)
+    count = 12                           # nozzles in the row, evenly spaced round the part (>= 1)
+    standoff_mm = 100.0                  # horizontal distance from exit to the part surface (> 0)
+    height_mm = 130.0                    # nozzle height above the turntable (the part's bottom face)
+    inclination_deg = 0.0                # > 0 aims the jet downward (-80..80), default 0
+    jet_speed_mm_s = 5340.0              # optional: overrides <side>_jet_speed_mm_s for this row
+
+The documented layouts of the two reference rings are in ``quenchsim/bath/reference_nozzles.toml``.
+Errors a user can cause (negative speed, oil at or above its boiling point, unknown quenchant, ...)
+raise :class:`quenchsim.errors.InputError` naming the field.
+
+Modules: quenchant (property files, Vogel viscosity), correlations (jets, convection, boiling),
+flow (local speed and run length per point), htc (boiling curve, BoundaryHTC, air), outline (simple
+section outlines and the ISO 9950 probe for diagnostics), reference (reference nozzle layouts).
+"""
+
+from quenchsim.bath.config import BathConfig, NozzleRow, parse_bath
+from quenchsim.bath.htc import BoundaryHTC, air_htc, boundary_htc
+
+__all__ = ["BathConfig", "NozzleRow", "BoundaryHTC", "parse_bath", "boundary_htc", "air_htc"]

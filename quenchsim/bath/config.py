@@ -1,0 +1,120 @@
+"""The ``[quench.bath]`` table of a case file -> :class:`BathConfig` (keys documented in quenchsim.bath)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from quenchsim.bath.quenchant import OilProperties, load_oil
+from quenchsim.errors import InputError
+
+SIDES = ("id", "od")
+
+
+@dataclass(frozen=True)
+class NozzleRow:
+    """One ring of identical nozzles around the part, all at one height, aimed radially.
+
+    side "id": inside the bore, aimed outward at the bore; "od": outside, aimed inward at the OD.
+    jet_speed_m_s is the exit speed; standoff_m the horizontal distance from the exit to the surface;
+    height_m the nozzle height above the turntable (the part's bottom face); inclination_rad > 0 aims
+    the jet downward.
+    """
+
+    name: str
+    side: str
+    jet_speed_m_s: float
+    diameter_m: float
+    count: int
+    standoff_m: float
+    height_m: float
+    inclination_rad: float
+
+
+@dataclass(frozen=True)
+class BathConfig:
+    """A parsed bath: quenchant, oil temperature, nozzle rows, part rotation and modelling options."""
+
+    quenchant: OilProperties
+    oil_temperature_C: float
+    rotation_rpm: float
+    rows: tuple[NozzleRow, ...]
+    oil_swirl_fraction: float
+    turntable_open_fraction: float
+    corner_carryover: float
+    T_max_C: float
+    T_step_K: float
+
+    @property
+    def omega_rad_s(self) -> float:
+        return self.rotation_rpm * 2.0 * math.pi / 60.0
+
+
+def _number(spec: dict[str, Any], key: str, field: str, default: float | None = None, *, lo: float | None = None,
+            hi: float | None = None, lo_open: bool = False) -> float:
+    value = spec.get(key, default)
+    name = f"{field}.{key}"
+    if value is None:
+        raise InputError(name, None, "is required")
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise InputError(name, value, "must be a finite number")
+    if lo is not None and (value <= lo if lo_open else value < lo):
+        raise InputError(name, value, f"must be {'>' if lo_open else '>='} {lo:g}")
+    if hi is not None and value > hi:
+        raise InputError(name, value, f"must be <= {hi:g}")
+    return float(value)
+
+
+def _row(name: str, spec: Any, bath: dict[str, Any], field: str) -> NozzleRow:
+    where = f"{field}.nozzles.{name}"
+    if not isinstance(spec, dict):
+        raise InputError(where, spec, "must be a table {diameter_mm, count, standoff_mm, height_mm, ...}")
+    side = spec.get("side", name.split("_")[0])
+    if side not in SIDES:
+        raise InputError(f"{where}.side", side, "must be 'id' or 'od' (or start the row name with id_/od_)")
+    if "jet_speed_mm_s" in spec:
+        speed = _number(spec, "jet_speed_mm_s", where, lo=0.0)
+    else:
+        speed = _number(bath, f"{side}_jet_speed_mm_s", field, lo=0.0)
+    count = spec.get("count")
+    if isinstance(count, bool) or not isinstance(count, int) or count < 1:
+        raise InputError(f"{where}.count", count, "must be an integer >= 1")
+    return NozzleRow(name=name, side=side, jet_speed_m_s=speed * 1e-3,
+                     diameter_m=_number(spec, "diameter_mm", where, lo=0.0, lo_open=True) * 1e-3, count=count,
+                     standoff_m=_number(spec, "standoff_mm", where, lo=0.0, lo_open=True) * 1e-3,
+                     height_m=_number(spec, "height_mm", where, lo=0.0) * 1e-3,
+                     inclination_rad=math.radians(_number(spec, "inclination_deg", where, 0.0, lo=-80.0, hi=80.0)))
+
+
+def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
+    """Parse a ``[quench.bath]`` table (condition overrides already merged); errors name the field."""
+    if not isinstance(spec, dict):
+        raise InputError(field, spec, "must be a table")
+    name = spec.get("quenchant")
+    if not isinstance(name, str) or not name:
+        raise InputError(f"{field}.quenchant", name, "is required: the name of a materials/quenchants/*.toml file")
+    oil = load_oil(name, f"{field}.quenchant")
+    T_oil = _number(spec, "oil_temperature_C", field, lo=-20.0)
+    if T_oil >= oil.boiling_point_C:
+        raise InputError(f"{field}.oil_temperature_C", T_oil,
+                         f"must be below the boiling point of {name} ({oil.boiling_point_C:g} C)")
+    for side in SIDES:
+        if f"{side}_jet_speed_mm_s" in spec:
+            _number(spec, f"{side}_jet_speed_mm_s", field, lo=0.0)
+    nozzles = spec.get("nozzles", {})
+    if not isinstance(nozzles, dict):
+        raise InputError(f"{field}.nozzles", nozzles, "must be a table of named rows [nozzles.<name>]")
+    rows = tuple(_row(row_name, row, spec, field) for row_name, row in nozzles.items())
+    T_max = _number(spec, "T_max_C", field, 1100.0, hi=2000.0)
+    if T_max <= oil.boiling_point_C:
+        raise InputError(f"{field}.T_max_C", T_max, f"must exceed the boiling point {oil.boiling_point_C:g} C")
+    return BathConfig(
+        quenchant=oil, oil_temperature_C=T_oil,
+        rotation_rpm=_number(spec, "rotation_rpm", field, 0.0, lo=0.0),
+        rows=rows,
+        oil_swirl_fraction=_number(spec, "oil_swirl_fraction", field, 0.0, lo=0.0, hi=1.0),
+        turntable_open_fraction=_number(spec, "turntable_open_fraction", field, 0.5, lo=0.0, hi=1.0),
+        corner_carryover=_number(spec, "corner_carryover", field, 0.3, lo=0.0, hi=1.0),
+        T_max_C=T_max,
+        T_step_K=_number(spec, "T_step_K", field, 2.0, lo=0.1, hi=50.0))

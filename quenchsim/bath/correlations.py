@@ -1,0 +1,128 @@
+"""Heat-transfer and free-jet correlations used by the bath model (pure, vectorised over numpy arrays).
+
+Each function states its equation and source. Where the `ht` package has the correlation it is called
+directly (the ones used here are plain arithmetic and accept arrays); the few written out here are
+checked against `ht`'s scalar versions in tests/test_bath_correlations.py.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import ht
+
+STEFAN_BOLTZMANN = 5.670374419e-8  # W/(m^2 K^4), CODATA 2018
+GRAVITY = 9.80665  # m/s^2
+
+# Round free jet (Pope, Turbulent Flows, 2000, Table 5.1, after Hussein, Capp & George 1994):
+# centre-line decay U_c/U_0 = B d/(x - x_0) with B = 5.8, spreading of the half-velocity radius
+# dr_1/2/dx = S = 0.094. x_0 ~ 0 is taken, so the potential core ends at x_c = B d (U_c = U_0 there).
+JET_DECAY_B = 5.8
+JET_SPREAD_S = 0.094
+# Plane turbulent wall jet (Launder & Rodi, Annu. Rev. Fluid Mech. 15 (1983) 429; Rajaratnam, Turbulent
+# Jets, 1976): U_m/U_0 = 3.5 (x/b_0)^(-1/2), i.e. U_m = 3.5 sqrt(J'/(rho x)) with J' = rho U_0^2 b_0 the
+# momentum flux per unit width.
+WALL_JET_C = 3.5
+
+
+def jet_centreline_velocity(U0_m_s: np.ndarray, d_m: np.ndarray, x_m: np.ndarray) -> np.ndarray:
+    """Centre-line speed of a submerged round jet at distance x: U_0 min(1, B d/x) (potential core, then 1/x)."""
+    x = np.maximum(np.asarray(x_m, dtype=float), 1e-12)
+    return np.asarray(U0_m_s, dtype=float) * np.minimum(1.0, JET_DECAY_B * np.asarray(d_m, dtype=float) / x)
+
+
+def jet_half_width(d_m: np.ndarray, x_m: np.ndarray) -> np.ndarray:
+    """Half-velocity radius of a round jet: max(d/2, S x)."""
+    return np.maximum(0.5 * np.asarray(d_m, dtype=float), JET_SPREAD_S * np.asarray(x_m, dtype=float))
+
+
+def plane_wall_jet_velocity(J_per_width_N_m: np.ndarray, rho_kg_m3: float, x_m: np.ndarray) -> np.ndarray:
+    """Maximum speed of a plane wall jet of momentum flux J' (N/m) at run x: 3.5 sqrt(J'/(rho x))."""
+    x = np.maximum(np.asarray(x_m, dtype=float), 1e-12)
+    return WALL_JET_C * np.sqrt(np.asarray(J_per_width_N_m, dtype=float) / (rho_kg_m3 * x))
+
+
+def flat_plate_local_nusselt(Re_x: np.ndarray, Pr: np.ndarray) -> np.ndarray:
+    """Local Nusselt number Nu_x of a flat-plate boundary layer at run x.
+
+    For a plate-average law Nu_L = C Re_L^m Pr^a the local value is Nu_x = m Nu_L(Re_x) (differentiate
+    x h_avg(x)). Laminar: Churchill & Ozoe (1973) average 0.6774 Re^0.5 Pr^(1/3) (1 + (0.0468/Pr)^(2/3))^-0.25
+    (ht.Nu_horizontal_plate_laminar_Churchill_Ozoe), m = 1/2; turbulent: Kreith average 0.036 Re^0.8 Pr^(1/3)
+    (ht.Nu_horizontal_plate_turbulent_Kreith), m = 0.8 -- local 0.0288 Re^0.8 Pr^(1/3). Wall jets are turbulent
+    from the impingement on (Launder & Rodi 1983), so the larger of the two is taken (the laminar form only
+    wins at low Re).
+    """
+    Re = np.maximum(np.asarray(Re_x, dtype=float), 0.0)
+    laminar = 0.5 * ht.Nu_horizontal_plate_laminar_Churchill_Ozoe(Re=Re, Pr=Pr)
+    turbulent = 0.8 * ht.Nu_horizontal_plate_turbulent_Kreith(Re=Re, Pr=Pr)
+    return np.maximum(laminar, turbulent)
+
+
+def vertical_plate_natural_nusselt(Pr: np.ndarray, Gr: np.ndarray) -> np.ndarray:
+    """Churchill & Chu (1975) vertical plate, all Ra: Nu = (0.825 + 0.387 Ra^(1/6)/(1 + (0.492/Pr)^(9/16))^(8/27))^2
+    (ht.Nu_vertical_plate_Churchill)."""
+    return ht.Nu_vertical_plate_Churchill(Pr=Pr, Gr=np.maximum(Gr, 0.0))
+
+
+def horizontal_plate_natural_nusselt(Pr: np.ndarray, Gr: np.ndarray, facing_up: np.ndarray) -> np.ndarray:
+    """McAdams (1954) horizontal plate with L = area/perimeter (as ht.Nu_horizontal_plate_McAdams).
+
+    Hot face up (buoyancy-driven plume): Nu = 0.54 Ra^(1/4) for Ra <= 1e7, 0.15 Ra^(1/3) above;
+    hot face down: Nu = 0.27 Ra^(1/4) for Ra <= 1e10, 0.15 Ra^(1/3) above.
+    """
+    Ra = np.maximum(np.asarray(Pr, dtype=float) * np.asarray(Gr, dtype=float), 0.0)
+    up = np.where(Ra <= 1e7, 0.54 * Ra**0.25, 0.15 * Ra ** (1.0 / 3.0))
+    down = np.where(Ra <= 1e10, 0.27 * Ra**0.25, 0.15 * Ra ** (1.0 / 3.0))
+    return np.where(facing_up, up, down)
+
+
+def churchill_usagi(a: np.ndarray, b: np.ndarray, n: float = 3.0) -> np.ndarray:
+    """(a^n + b^n)^(1/n): Churchill & Usagi (1972) blending; n = 3 for assisting forced + natural
+    convection (Churchill, 1977)."""
+    return (np.asarray(a, dtype=float) ** n + np.asarray(b, dtype=float) ** n) ** (1.0 / n)
+
+
+def zuber_critical_heat_flux(sigma_N_m: float, h_fg_J_kg: float, rho_l: float, rho_v: float, K: float) -> float:
+    """Zuber (1959) pool-boiling critical heat flux q_max = K h_fg rho_v^0.5 (sigma g (rho_l - rho_v))^0.25
+    (ht.Zuber)."""
+    return float(ht.Zuber(sigma=sigma_N_m, Hvap=h_fg_J_kg, rhol=rho_l, rhog=rho_v, K=K))
+
+
+def ivey_morris_factor(rho_l: float, rho_v: float, cp_l: float, subcooling_K: float, h_fg_J_kg: float,
+                       C: float) -> float:
+    """Ivey & Morris (1962) subcooling factor on the critical heat flux:
+    1 + C (rho_l/rho_v)^0.75 c_p dT_sub / h_fg (C = 0.1)."""
+    return 1.0 + C * (rho_l / rho_v) ** 0.75 * cp_l * max(subcooling_K, 0.0) / h_fg_J_kg
+
+
+def rohsenow_heat_flux(dT_excess_K: np.ndarray, rho_l: float, rho_v: float, mu_l: float, k_l: float, cp_l: float,
+                       h_fg_J_kg: float, sigma_N_m: float, Csf: float, n: float) -> np.ndarray:
+    """Rohsenow (1952) nucleate boiling q = mu h_fg sqrt(g (rho_l-rho_v)/sigma) (c_p dT_e/(C_sf h_fg Pr^n))^3.
+
+    ht.Rohsenow returns h = q/dT_e; this returns q (W/m^2) and 0 for dT_e <= 0."""
+    dT = np.maximum(np.asarray(dT_excess_K, dtype=float), 0.0)
+    h = ht.Rohsenow(rhol=rho_l, rhog=rho_v, mul=mu_l, kl=k_l, Cpl=cp_l, Hvap=h_fg_J_kg, sigma=sigma_N_m,
+                    Te=np.maximum(dT, 1e-12), Csf=Csf, n=n)
+    return np.where(dT > 0.0, h * dT, 0.0)
+
+
+def bromley_film_htc(dT_K: np.ndarray, L_m: np.ndarray, k_v: float, rho_v: np.ndarray, rho_l: float, mu_v: float,
+                     h_fg_eff_J_kg: np.ndarray, C: float) -> np.ndarray:
+    """Bromley (1950) natural-convection film boiling h = C [k_v^3 rho_v (rho_l - rho_v) g h_fg' / (mu_v L dT)]^(1/4)
+    with h_fg' = h_fg + 0.4 c_pv dT (C = 0.62)."""
+    dT = np.maximum(np.asarray(dT_K, dtype=float), 1e-9)
+    return C * (k_v**3 * rho_v * (rho_l - rho_v) * GRAVITY * h_fg_eff_J_kg / (mu_v * L_m * dT)) ** 0.25
+
+
+def forced_film_htc(U_m_s: np.ndarray, dT_K: np.ndarray, L_m: np.ndarray, k_v: float, rho_v: np.ndarray,
+                    h_fg_eff_J_kg: np.ndarray, C: float) -> np.ndarray:
+    """Bromley, LeRoy & Robbers (1953) forced-flow film boiling h = C sqrt(U k_v rho_v h_fg' / (L dT)) (C = 2.7)."""
+    dT = np.maximum(np.asarray(dT_K, dtype=float), 1e-9)
+    return C * np.sqrt(np.maximum(U_m_s, 0.0) * k_v * rho_v * h_fg_eff_J_kg / (L_m * dT))
+
+
+def radiation_htc(T_surface_C: np.ndarray, T_ambient_C: np.ndarray, emissivity: float) -> np.ndarray:
+    """Linearised grey-body radiation h_r = eps sigma (T_s^2 + T_a^2)(T_s + T_a), T in K
+    (so that h_r (T_s - T_a) = eps sigma (T_s^4 - T_a^4))."""
+    Ts = np.asarray(T_surface_C, dtype=float) + 273.15
+    Ta = np.asarray(T_ambient_C, dtype=float) + 273.15
+    return emissivity * STEFAN_BOLTZMANN * (Ts**2 + Ta**2) * (Ts + Ta)

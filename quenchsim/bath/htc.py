@@ -1,0 +1,200 @@
+"""HTC(T_surface) per boundary point: boiling curve of the oil under the local flow, and air cooling.
+
+For each point the heat flux q(T_s) (W/m^2) is built on a uniform surface-temperature grid, then
+h = q/(T_s - T_oil) is stored; :class:`BoundaryHTC` interpolates it vectorised in the time loop.
+
+Regimes (T_b boiling point, T_L Leidenfrost temperature, T_oil bath temperature):
+
+* Convection, T_s <= T_b: h_c = ((sum_i h_i^2)^(1/2))^3 + h_nat^3)^(1/3) -- each flow source i
+  (nozzle row, rotation) gives a local flat-plate coefficient h_i = k Nu_x(U_i x_i/nu, Pr)/x_i, combined
+  in quadrature, then blended with natural convection (Churchill 1977, n = 3). Liquid properties at
+  the film temperature (T_s + T_oil)/2, capped at (T_b + T_oil)/2 once the wall boils.
+* Nucleate boiling, T_b < T_s <= T_peak: q = h_c (T_s - T_oil) + min(q_Rohsenow(T_s - T_b), q_max) --
+  forced convection and boiling added (Rohsenow 1952 superposition for subcooled flow boiling), the
+  boiling part capped by Zuber's critical flux raised for subcooling (Ivey & Morris 1962). T_peak is
+  where the Rohsenow flux meets q_max (closed form, Rohsenow q ~ dT_e^3).
+* Transition boiling, T_peak < T_s < T_L: q falls log-linearly in T_s from q(T_peak) to q_film(T_L).
+* Film boiling, T_s >= T_L: q = h_f (T_s - T_b) + 0.75 h_rad (T_s - T_oil) + h_c (T_b - T_oil): vapour-film
+  conduction (Bromley 1950 natural, Bromley-LeRoy-Robbers 1953 forced, blended n = 3), radiation
+  through the film (Bromley's 3/4), and convection from the film's liquid face (at T_b) into the
+  subcooled oil.
+* Agitation: T_L = T_L0 + dT_L U/(U + U_L) with U the local speed -- faster oil shortens the vapour
+  stage and strong flow removes it; higher U also raises h_c, the peak flux and the film flux.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from quenchsim.bath.config import BathConfig
+from quenchsim.bath.correlations import (GRAVITY, bromley_film_htc, churchill_usagi, flat_plate_local_nusselt,
+                                         forced_film_htc, horizontal_plate_natural_nusselt, ivey_morris_factor,
+                                         radiation_htc, rohsenow_heat_flux, vertical_plate_natural_nusselt,
+                                         zuber_critical_heat_flux)
+from quenchsim.bath.flow import LocalFlow, VERTICAL_NZ, local_flow
+from quenchsim.bath.quenchant import GasProperties, OilProperties, load_gas
+from quenchsim.errors import InputError
+from quenchsim.geometry.boundary import BoundaryPoints
+
+
+@dataclass(frozen=True)
+class BoundaryHTC:
+    """HTC curves of every boundary point on a shared uniform surface-temperature grid.
+
+    T_grid_C (m,), h_W_m2K (n_points, m), ambient_C (n_points,), velocity_m_s (n_points,),
+    segment (n_points,). Calling it with the surface temperatures (n_points,) interpolates linearly
+    (clamped to the grid ends). Diagnostics: length_m (run length of the fastest flow source),
+    leidenfrost_C and peak_C per point (NaN for air).
+    """
+
+    T_grid_C: np.ndarray
+    h_W_m2K: np.ndarray
+    ambient_C: np.ndarray
+    velocity_m_s: np.ndarray
+    segment: np.ndarray
+    length_m: np.ndarray
+    leidenfrost_C: np.ndarray
+    peak_C: np.ndarray
+    _rows: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_rows", np.arange(self.h_W_m2K.shape[0]))
+
+    def __call__(self, T_surface_C: np.ndarray) -> np.ndarray:
+        T0, dT, m = self.T_grid_C[0], self.T_grid_C[1] - self.T_grid_C[0], self.T_grid_C.size
+        u = np.clip((np.asarray(T_surface_C, dtype=float) - T0) / dT, 0.0, m - 1.0)
+        i = np.minimum(u.astype(np.intp), m - 2)
+        w = u - i
+        h = self.h_W_m2K
+        return h[self._rows, i] * (1.0 - w) + h[self._rows, i + 1] * w
+
+
+def _grid(T_low_C: float, T_high_C: float, step_K: float) -> np.ndarray:
+    m = int(np.ceil((T_high_C - T_low_C) / step_K)) + 1
+    return T_low_C + step_K * np.arange(m)
+
+
+def leidenfrost_temperature(oil: OilProperties, U_m_s: np.ndarray) -> np.ndarray:
+    """T_L = T_L0 + dT_L U/(U + U_L): still-oil vapour-blanket collapse temperature raised by agitation."""
+    U = np.maximum(np.asarray(U_m_s, dtype=float), 0.0)
+    return oil.leidenfrost_still_C + oil.leidenfrost_agitation_rise_K * U / (U + oil.leidenfrost_velocity_scale_m_s)
+
+
+def convective_htc(oil: OilProperties, flow: LocalFlow, T_s: np.ndarray, T_oil: float) -> np.ndarray:
+    """Single-phase h_c (n, m) at wall temperatures T_s (m,) (capped at the boiling point for the film)."""
+    T_wall = np.minimum(T_s, oil.boiling_point_C)[None, :]
+    T_film = 0.5 * (T_wall + T_oil)
+    nu, Pr, k = oil.kinematic_viscosity(T_film), oil.prandtl(T_film), oil.conductivity_W_mK
+    h_forced_sq = np.zeros((flow.speed_m_s.shape[1], T_s.size))
+    for U, x in zip(flow.speed_m_s, flow.run_length_m):
+        Re = U[:, None] * x[:, None] / nu
+        h_forced_sq += (k * flat_plate_local_nusselt(Re, Pr) / x[:, None]) ** 2
+    L = flow.natural_length_m[:, None]
+    Gr = GRAVITY * oil.expansion_1_K * np.maximum(T_wall - T_oil, 0.0) * L**3 / nu**2
+    vertical = (flow.orientation == 0)[:, None]
+    Nu_nat = np.where(vertical, vertical_plate_natural_nusselt(Pr, Gr),
+                      horizontal_plate_natural_nusselt(Pr, Gr, (flow.orientation > 0)[:, None]))
+    return churchill_usagi(np.sqrt(h_forced_sq), k * Nu_nat / L)
+
+
+def oil_heat_flux(oil: OilProperties, flow: LocalFlow, T_s: np.ndarray, T_oil: float) -> tuple[np.ndarray, ...]:
+    """Boiling curve q (n, m) on the grid T_s (m,), with T_L (n,) and T_peak (n,)."""
+    Tb, rho_l, cp_l = oil.boiling_point_C, oil.density_kg_m3, oil.specific_heat_J_kgK
+    h_c = convective_htc(oil, flow, T_s, T_oil)
+    dT_oil = (T_s - T_oil)[None, :]
+    q_conv = h_c * dT_oil
+    # nucleate boiling, liquid properties at the boiling point, vapour at the boiling point
+    rho_vb = float(oil.vapour_density(Tb))
+    mu_b = float(oil.viscosity(Tb))
+    q_max = zuber_critical_heat_flux(oil.surface_tension_N_m, oil.latent_heat_J_kg, rho_l, rho_vb, oil.zuber_K) \
+        * ivey_morris_factor(rho_l, rho_vb, cp_l, Tb - T_oil, oil.latent_heat_J_kg, oil.ivey_morris_C)
+    boil = dict(rho_l=rho_l, rho_v=rho_vb, mu_l=mu_b, k_l=oil.conductivity_W_mK, cp_l=cp_l,
+                h_fg_J_kg=oil.latent_heat_J_kg, sigma_N_m=oil.surface_tension_N_m, Csf=oil.rohsenow_Csf,
+                n=oil.rohsenow_n)
+    q_nb = np.minimum(rohsenow_heat_flux(T_s - Tb, **boil), q_max)
+    T_peak_nb = Tb + (q_max / float(rohsenow_heat_flux(1.0, **boil))) ** (1.0 / 3.0)
+    q_wet = q_conv + q_nb[None, :]
+    # film boiling, vapour properties at the film mean temperature
+    dT_b = np.maximum(T_s - Tb, 1e-9)
+    rho_v = oil.vapour_density(0.5 * (T_s + Tb))
+    h_fg_eff = oil.latent_heat_J_kg + 0.4 * oil.vapour_specific_heat_J_kgK * dT_b
+    U = flow.velocity_m_s[:, None]
+    h_nat_film = bromley_film_htc(dT_b[None, :], flow.natural_length_m[:, None], oil.vapour_conductivity_W_mK, rho_v,
+                                  rho_l, oil.vapour_viscosity_Pa_s, h_fg_eff, oil.bromley_C)
+    h_forced_film = forced_film_htc(U, dT_b[None, :], flow.length_m[:, None], oil.vapour_conductivity_W_mK, rho_v,
+                                    h_fg_eff, oil.film_forced_C)
+    h_c_interface = h_c[:, -1:]  # wall capped at T_b: the coefficient of the film's liquid face
+    q_film = (churchill_usagi(h_nat_film, h_forced_film) * dT_b
+              + 0.75 * radiation_htc(T_s, T_oil, oil.surface_emissivity) * dT_oil
+              + h_c_interface * (Tb - T_oil))
+    # regimes
+    T_L = leidenfrost_temperature(oil, flow.velocity_m_s)
+    T_peak = np.minimum(T_peak_nb, T_L)
+    q_peak = _interp_rows(T_s, q_wet, T_peak)
+    q_film_L = _interp_rows(T_s, q_film, T_L)
+    theta = np.clip((T_s[None, :] - T_peak[:, None]) / np.maximum(T_L - T_peak, 1e-9)[:, None], 0.0, 1.0)
+    q_transition = q_peak[:, None] * (q_film_L / q_peak)[:, None] ** theta
+    T = T_s[None, :]
+    q = np.where(T <= T_peak[:, None], q_wet, np.where(T < T_L[:, None], q_transition, q_film))
+    return q, h_c, T_L, T_peak
+
+
+def _interp_rows(x: np.ndarray, Y: np.ndarray, x_row: np.ndarray) -> np.ndarray:
+    """Y[j](x_row[j]) for every row j of Y sampled on the shared grid x (uniform)."""
+    u = np.clip((x_row - x[0]) / (x[1] - x[0]), 0.0, x.size - 1.0)
+    i = np.minimum(u.astype(np.intp), x.size - 2)
+    w = u - i
+    rows = np.arange(Y.shape[0])
+    return Y[rows, i] * (1.0 - w) + Y[rows, i + 1] * w
+
+
+def boundary_htc(cfg: BathConfig, points: BoundaryPoints) -> BoundaryHTC:
+    """HTC(T_surface) curves of every boundary point in the oil bath ``cfg`` (build once per stage)."""
+    flow = local_flow(cfg, points)
+    T_oil = cfg.oil_temperature_C
+    T_grid = _grid(T_oil, cfg.T_max_C, cfg.T_step_K)
+    q, h_c, T_L, T_peak = oil_heat_flux(cfg.quenchant, flow, T_grid, T_oil)
+    dT = (T_grid - T_oil)[None, :]
+    h = np.where(dT > 0.0, q / np.where(dT > 0.0, dT, 1.0), h_c) * flow.exposed_fraction[:, None]
+    n = len(points)
+    return BoundaryHTC(T_grid_C=T_grid, h_W_m2K=h, ambient_C=np.full(n, T_oil), velocity_m_s=flow.velocity_m_s,
+                       segment=np.asarray(points.segment), length_m=flow.length_m, leidenfrost_C=T_L,
+                       peak_C=T_peak)
+
+
+def air_natural_htc(gas: GasProperties, points: BoundaryPoints, T_s: np.ndarray, T_air: float) -> np.ndarray:
+    """Natural-convection h (n, m) in still gas: Churchill-Chu on vertical faces (L = section height),
+    McAdams on horizontal faces (L = half the radial width = area/perimeter of an annular face)."""
+    ext = points.extent
+    vertical = (np.abs(points.normal_z) < VERTICAL_NZ)[:, None]
+    L = np.where(vertical, ext.z_max_m - ext.z_min_m, 0.5 * (ext.r_max_m - ext.r_min_m))
+    T_film = 0.5 * (T_s + T_air)[None, :]
+    nu, Pr, k = gas.kinematic_viscosity(T_film), gas.prandtl(T_film), gas.conductivity(T_film)
+    Gr = GRAVITY * gas.expansion_1_K(T_film) * np.abs(T_s - T_air)[None, :] * L**3 / nu**2
+    Nu = np.where(vertical, vertical_plate_natural_nusselt(Pr, Gr),
+                  horizontal_plate_natural_nusselt(Pr, Gr, (points.normal_z > 0)[:, None]))
+    return k * Nu / L
+
+
+def air_htc(points: BoundaryPoints, air_temperature_C: float, emissivity: float, T_max_C: float = 1100.0,
+            T_step_K: float = 2.0, gas: str = "air") -> BoundaryHTC:
+    """HTC(T_surface) in still air: natural convection (ht correlations) + linearised radiation
+    eps sigma (T_s^2 + T_a^2)(T_s + T_a)."""
+    if not 0.0 < emissivity <= 1.0:
+        raise InputError("air.emissivity", emissivity, "must be in (0, 1]")
+    if not -50.0 <= air_temperature_C < T_max_C:
+        raise InputError("air.temperature_C", air_temperature_C, f"must be in [-50, {T_max_C:g}) C")
+    props = load_gas(gas)
+    T_grid = _grid(air_temperature_C, T_max_C, T_step_K)
+    h = air_natural_htc(props, points, T_grid, air_temperature_C) \
+        + radiation_htc(T_grid, air_temperature_C, emissivity)[None, :]
+    n = len(points)
+    nan = np.full(n, np.nan)
+    return BoundaryHTC(T_grid_C=T_grid, h_W_m2K=h, ambient_C=np.full(n, float(air_temperature_C)),
+                       velocity_m_s=np.zeros(n), segment=np.asarray(points.segment),
+                       length_m=np.where(np.abs(points.normal_z) < VERTICAL_NZ,
+                                         points.extent.z_max_m - points.extent.z_min_m,
+                                         0.5 * (points.extent.r_max_m - points.extent.r_min_m)),
+                       leidenfrost_C=nan, peak_C=nan)

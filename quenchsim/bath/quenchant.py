@@ -1,0 +1,173 @@
+"""Quenchant properties from ``materials/quenchants/NAME.toml`` (liquid oils and air).
+
+A liquid quenchant file has a ``[liquid]`` table (viscosity table fitted by Vogel, density, specific
+heat, conductivity, expansion coefficient) and a ``[boiling]`` table (boiling point, vapour data,
+boiling-curve constants). A gas file (``kind = "gas"``) has a ``[gas]`` table of properties at 1 atm
+tabulated against temperature. Every entry carries a ``source``; see the files themselves.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from scipy.optimize import brentq
+
+from quenchsim.errors import InputError
+from quenchsim.materials import load_data_file
+
+KELVIN = 273.15
+GAS_CONSTANT = 8.314462618  # J/(mol K), CODATA 2018
+ATMOSPHERE_Pa = 101325.0
+
+
+@dataclass(frozen=True)
+class Vogel:
+    """Vogel viscosity law mu(T) = exp(A + B/(T_K - C)) (Vogel 1921), T in C, mu in Pa s."""
+
+    A: float
+    B_K: float
+    C_K: float
+
+    def __call__(self, T_C: Any) -> np.ndarray:
+        T_K = np.asarray(T_C, dtype=float) + KELVIN
+        return np.exp(self.A + self.B_K / (T_K - self.C_K))
+
+
+def fit_vogel(T_C: np.ndarray, mu_Pa_s: np.ndarray, field: str) -> Vogel:
+    """The Vogel law through three (T, mu) points, solved exactly.
+
+    With y = ln mu, (y1 - y2)/(y2 - y3) fixes C (root of a monotone function between 0 K and the lowest
+    point); B and A follow linearly. Raises InputError unless the points are three, increasing in T and
+    decreasing in mu with a positive Vogel temperature below the first point.
+    """
+    T = np.asarray(T_C, dtype=float) + KELVIN
+    mu = np.asarray(mu_Pa_s, dtype=float)
+    if T.size != 3 or mu.size != 3 or np.any(np.diff(T) <= 0) or np.any(mu <= 0) or np.any(np.diff(mu) >= 0):
+        raise InputError(field, list(mu_Pa_s), "needs 3 positive viscosities decreasing with increasing T_C")
+    y = np.log(mu)
+    target = (y[0] - y[1]) / (y[1] - y[2])
+
+    def residual(C: float) -> float:
+        a, b, c = 1.0 / (T - C)
+        return (a - b) / (b - c) - target
+
+    lo, hi = 0.0, T[0] - 1e-6
+    if residual(lo) * residual(hi) > 0:
+        raise InputError(field, list(mu_Pa_s), "cannot be fitted by a Vogel law with 0 K < C < T_1")
+    C = brentq(residual, lo, hi, xtol=1e-10)
+    B = (y[0] - y[1]) / (1.0 / (T[0] - C) - 1.0 / (T[1] - C))
+    return Vogel(A=float(y[0] - B / (T[0] - C)), B_K=float(B), C_K=float(C))
+
+
+def _value(table: dict[str, Any], key: str, field: str) -> float:
+    spec = table.get(key)
+    value = spec.get("value") if isinstance(spec, dict) else spec
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise InputError(f"{field}.{key}", value, "is required (a number or {value, source})")
+    return float(value)
+
+
+@dataclass(frozen=True)
+class OilProperties:
+    """A boiling liquid quenchant (mineral oil). SI units, T in C."""
+
+    name: str
+    viscosity: Vogel
+    density_kg_m3: float
+    specific_heat_J_kgK: float
+    conductivity_W_mK: float
+    expansion_1_K: float
+    boiling_point_C: float
+    molar_mass_kg_mol: float
+    latent_heat_J_kg: float
+    surface_tension_N_m: float
+    vapour_conductivity_W_mK: float
+    vapour_viscosity_Pa_s: float
+    vapour_specific_heat_J_kgK: float
+    zuber_K: float
+    ivey_morris_C: float
+    rohsenow_n: float
+    rohsenow_Csf: float
+    leidenfrost_still_C: float
+    leidenfrost_agitation_rise_K: float
+    leidenfrost_velocity_scale_m_s: float
+    bromley_C: float
+    film_forced_C: float
+    surface_emissivity: float
+
+    def kinematic_viscosity(self, T_C: Any) -> np.ndarray:
+        """nu = mu(T)/rho (m^2/s)."""
+        return self.viscosity(T_C) / self.density_kg_m3
+
+    def prandtl(self, T_C: Any) -> np.ndarray:
+        """Pr = mu c_p / k."""
+        return self.viscosity(T_C) * self.specific_heat_J_kgK / self.conductivity_W_mK
+
+    def vapour_density(self, T_C: Any) -> np.ndarray:
+        """Ideal-gas vapour density at 1 atm, rho_v = p M / (R T)."""
+        return ATMOSPHERE_Pa * self.molar_mass_kg_mol / (GAS_CONSTANT * (np.asarray(T_C, dtype=float) + KELVIN))
+
+
+@dataclass(frozen=True)
+class GasProperties:
+    """A gas at 1 atm tabulated against temperature (linear interpolation, clamped)."""
+
+    name: str
+    T_C: np.ndarray
+    conductivity_W_mK: np.ndarray
+    kinematic_viscosity_m2_s: np.ndarray
+    prandtl_table: np.ndarray
+
+    def conductivity(self, T_C: Any) -> np.ndarray:
+        return np.interp(T_C, self.T_C, self.conductivity_W_mK)
+
+    def kinematic_viscosity(self, T_C: Any) -> np.ndarray:
+        return np.interp(T_C, self.T_C, self.kinematic_viscosity_m2_s)
+
+    def prandtl(self, T_C: Any) -> np.ndarray:
+        return np.interp(T_C, self.T_C, self.prandtl_table)
+
+    @staticmethod
+    def expansion_1_K(T_C: Any) -> np.ndarray:
+        """Ideal gas: beta = 1/T_K."""
+        return 1.0 / (np.asarray(T_C, dtype=float) + KELVIN)
+
+
+_OIL_LIQUID = ("density_kg_m3", "specific_heat_J_kgK", "conductivity_W_mK", "expansion_1_K")
+_OIL_BOILING = ("boiling_point_C", "molar_mass_kg_mol", "latent_heat_J_kg", "surface_tension_N_m",
+                "vapour_conductivity_W_mK", "vapour_viscosity_Pa_s", "vapour_specific_heat_J_kgK", "zuber_K",
+                "ivey_morris_C", "rohsenow_n", "rohsenow_Csf", "leidenfrost_still_C",
+                "leidenfrost_agitation_rise_K", "leidenfrost_velocity_scale_m_s", "bromley_C", "film_forced_C",
+                "surface_emissivity")
+
+
+def load_oil(name: str, field: str = "quench.bath.quenchant") -> OilProperties:
+    """Load a boiling liquid quenchant ``materials/quenchants/NAME.toml``; errors name ``field``."""
+    data = load_data_file(name, subdir="quenchants", field=field)
+    if data.get("kind") != "liquid":
+        raise InputError(field, name, f"is a {data.get('kind', 'untyped')} quenchant; a liquid (oil) is needed here")
+    liquid, boiling = data.get("liquid", {}), data.get("boiling", {})
+    visc = liquid.get("viscosity_Pa_s", {})
+    if not isinstance(visc, dict) or "T_C" not in visc or "value" not in visc:
+        raise InputError(f"{name}.liquid.viscosity_Pa_s", visc, "needs a table {T_C = [...], value = [...]}")
+    values = {key: _value(liquid, key, f"{name}.liquid") for key in _OIL_LIQUID}
+    values.update({key: _value(boiling, key, f"{name}.boiling") for key in _OIL_BOILING})
+    return OilProperties(name=name, viscosity=fit_vogel(visc["T_C"], visc["value"], f"{name}.liquid.viscosity_Pa_s"),
+                         **values)
+
+
+def load_gas(name: str, field: str = "air") -> GasProperties:
+    """Load a gas quenchant ``materials/quenchants/NAME.toml`` (``kind = "gas"``)."""
+    data = load_data_file(name, subdir="quenchants", field=field)
+    if data.get("kind") != "gas":
+        raise InputError(field, name, "is not a gas quenchant file (kind = \"gas\")")
+    gas = data.get("gas", {})
+    try:
+        return GasProperties(name=name, T_C=np.asarray(gas["T_C"], float),
+                             conductivity_W_mK=np.asarray(gas["conductivity_W_mK"], float),
+                             kinematic_viscosity_m2_s=np.asarray(gas["kinematic_viscosity_m2_s"], float),
+                             prandtl_table=np.asarray(gas["prandtl"], float))
+    except KeyError as exc:
+        raise InputError(f"{name}.gas.{exc.args[0]}", None, "is required") from None
