@@ -1,0 +1,35 @@
+"""`quenchsim bearings runout INPUT.toml`: ball-bearing run-out / NRRO from form errors.
+
+Writes the ring-centre trajectory CSV (and orbit / spectrum plots unless --no-plots) into --out
+and returns the model, identified spectral peaks, run-out and NRRO as one JSON object.
+"""
+
+from __future__ import annotations
+
+import argparse
+import pathlib
+
+from quenchsim.bearings.runout import load_case, run as run_case
+from quenchsim.bearings.runout.output import summary, write_trajectory_csv
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("input", type=pathlib.Path, help="run-out case file (TOML), see cases/runout_*.toml")
+    parser.add_argument("--out", type=pathlib.Path, default=None,
+                        help="output directory (default: ./runout_<input stem>)")
+    parser.add_argument("--no-plots", action="store_true", help="skip the orbit and spectrum PNGs")
+
+
+def run(args: argparse.Namespace) -> dict:
+    case = load_case(args.input)
+    out = args.out if args.out is not None else pathlib.Path(f"runout_{args.input.stem}")
+    result = run_case(case)
+    csv = write_trajectory_csv(result, out / "trajectory.csv")
+    data = summary(result, csv)
+    if not args.no_plots:
+        from quenchsim.bearings.runout.plots import orbit_plot, spectrum_plot
+
+        title = f"{args.input.name} ({case.model})"
+        data["plots"] = [str(orbit_plot(result, out / "orbit.png", title)),
+                         str(spectrum_plot(result, out / "spectrum.png", title))]
+    return data

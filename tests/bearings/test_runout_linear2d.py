@@ -1,0 +1,144 @@
+"""2-D linear-spring model against the published frequency table (reference sec. 2, inner ring
+rotating, outer fixed): one imperfection at a time on the 695 bearing (Table 2), the line must
+appear at the predicted frequency, direction and amplitude ratio, and nowhere else."""
+
+from __future__ import annotations
+
+import copy
+import math
+
+import numpy as np
+import pytest
+
+from quenchsim.bearings.runout import parse_case, run
+from quenchsim.bearings.runout.analysis import simulate, spectra_and_peaks
+
+Z = 8
+ALPHA = math.radians(19.8)
+BASE = {
+    "model": "linear2d",
+    "bearing": {"pitch_diameter_mm": 9.0, "ball_diameter_mm": 2.0, "balls": Z, "contact_angle_deg": 19.8},
+    "operation": {"rotating": "inner", "speed_rpm": 1800, "axial_load_N": 7.8, "revolutions": 10, "step_deg": 1.0},
+}
+AMP_UM = 0.1
+
+
+def _run(**extra):
+    data = copy.deepcopy(BASE)
+    data.update(extra)
+    case = parse_case(data)
+    spectra, peaks, f = spectra_and_peaks(case, simulate(case))
+    return case, peaks, f
+
+
+def _lines(peaks, direction):
+    return [p for p in peaks if p.direction == direction]
+
+
+def _one_line(peaks, direction, freq, tol_hz):
+    found = [p for p in _lines(peaks, direction) if abs(abs(p.frequency_hz) - freq) < tol_hz]
+    assert len(found) == 1, f"{direction} line at {freq:.4g} Hz not found in {[p.frequency_hz for p in peaks]}"
+    return found[0]
+
+
+@pytest.mark.parametrize("n", [1, 2])
+@pytest.mark.parametrize("sign", [-1, 1])
+def test_inner_raceway_nZ_pm1_radial_at_nZfi_pm_fr(n, sign):
+    case, peaks, f = _run(waviness=[{"part": "inner", "order": n * Z + sign, "amplitude_um_pp": AMP_UM}])
+    fi, fr = f.inner_rel_cage_hz, case.speed_hz
+    expected = n * Z * fi + sign * fr
+    tol = 0.3 / case.duration_s
+    line = _one_line(peaks, "radial", expected, tol)
+    assert line.amplitude_pp_m == pytest.approx(AMP_UM * 1e-6, rel=2e-3)  # amplitude ratio 1
+    assert line.source == f"{n * Z} f_i {'+' if sign > 0 else '-'} f_r"
+    for d in ("x", "y"):
+        assert _one_line(peaks, d, expected, tol).amplitude_pp_m == pytest.approx(AMP_UM * 1e-6, rel=5e-3)
+    assert not _lines(peaks, "axial")
+    assert len(_lines(peaks, "radial")) == 1
+
+
+@pytest.mark.parametrize("n", [1, 2])
+def test_inner_raceway_nZ_axial_at_nZfi(n):
+    case, peaks, f = _run(waviness=[{"part": "inner", "order": n * Z, "amplitude_um_pp": AMP_UM}])
+    line = _one_line(peaks, "axial", n * Z * f.inner_rel_cage_hz, 0.3 / case.duration_s)
+    assert line.amplitude_pp_m == pytest.approx(AMP_UM * 1e-6 / math.tan(ALPHA), rel=2e-3)  # cot(alpha)
+    assert line.source == f"{n * Z} f_i"
+    assert not _lines(peaks, "radial") and not _lines(peaks, "x") and not _lines(peaks, "y")
+
+
+@pytest.mark.parametrize("n", [1, 2])
+@pytest.mark.parametrize("sign", [-1, 1])
+def test_outer_raceway_nZ_pm1_radial_at_nZfc_and_whirl(n, sign):
+    case, peaks, f = _run(waviness=[{"part": "outer", "order": n * Z + sign, "amplitude_um_pp": AMP_UM}])
+    line = _one_line(peaks, "radial", n * Z * f.cage_hz, 0.3 / case.duration_s)
+    assert line.amplitude_pp_m == pytest.approx(AMP_UM * 1e-6, rel=2e-3)
+    assert line.source == f"{n * Z} f_c"
+    # nZ - 1 whirls with the inner ring (forward), nZ + 1 against it (reference sec. 2)
+    assert line.whirl == ("forward" if sign < 0 else "backward")
+    assert not _lines(peaks, "axial")
+
+
+@pytest.mark.parametrize("n", [1, 2])
+def test_outer_raceway_nZ_axial_at_nZfc(n):
+    case, peaks, f = _run(waviness=[{"part": "outer", "order": n * Z, "amplitude_um_pp": AMP_UM}])
+    line = _one_line(peaks, "axial", n * Z * f.cage_hz, 0.3 / case.duration_s)
+    assert line.amplitude_pp_m == pytest.approx(AMP_UM * 1e-6 / math.tan(ALPHA), rel=2e-3)
+    assert not _lines(peaks, "radial")
+
+
+def test_ball_diameter_variation_radial_at_fc_ratio_4_over_Z_no_axial():
+    dev_um = 0.01  # the test bearing of Table 3
+    case, peaks, f = _run(ball_diameter_deviation=[{"ball": 3, "deviation_um": dev_um}])
+    line = _one_line(peaks, "radial", f.cage_hz, 0.3 / case.duration_s)
+    assert line.source == "f_c" and line.whirl == "forward"
+    assert line.amplitude_pp_m == pytest.approx(4.0 / Z * dev_um * 1e-6, rel=2e-3)
+    assert not _lines(peaks, "axial")
+
+
+@pytest.mark.parametrize("n", [1, 2])
+def test_ball_waviness_2n_radial_2nfb_pm_fc_axial_2nfb(n):
+    case, peaks, f = _run(waviness=[{"part": "ball", "ball": 0, "order": 2 * n, "amplitude_um_pp": AMP_UM}])
+    tol = 0.3 / case.duration_s
+    fb, fc = f.ball_spin_hz, f.cage_hz
+    lo = _one_line(peaks, "x", 2 * n * fb - fc, tol)
+    hi = _one_line(peaks, "x", 2 * n * fb + fc, tol)
+    # amplitude ratio 4/Z: modulation envelope (sum of both sidebands) over the input amplitude
+    assert lo.amplitude_pp_m + hi.amplitude_pp_m == pytest.approx(4.0 / Z * AMP_UM * 1e-6, rel=5e-3)
+    assert lo.source == f"{2 * n} f_b - f_c" and hi.source == f"{2 * n} f_b + f_c"
+    ax = _one_line(peaks, "axial", 2 * n * fb, tol)
+    assert ax.amplitude_pp_m == pytest.approx(2.0 / Z / math.tan(ALPHA) * AMP_UM * 1e-6, rel=2e-3)
+    assert len(_lines(peaks, "axial")) == 1 and len(_lines(peaks, "radial")) == 2
+
+
+@pytest.mark.parametrize("part, order", [("inner", 3), ("outer", 5), ("inner", 12), ("ball", 3)])
+def test_orders_outside_the_table_give_no_line(part, order):
+    w = {"part": part, "order": order, "amplitude_um_pp": AMP_UM}
+    if part == "ball":
+        w["ball"] = 1
+    _, peaks, _ = _run(waviness=[w])
+    assert peaks == []
+
+
+def test_unequal_spacing_runout_proportional_to_axial_load():
+    """One ball displaced along the pitch circle: with linear springs the radial run-out is
+    proportional to the preload deflection, i.e. to the axial load."""
+    out = []
+    for load in (5.0, 10.0, 20.0):
+        data = copy.deepcopy(BASE)
+        data["operation"]["axial_load_N"] = load
+        data["bearing"]["ball_spring_N_per_m"] = 2.0e7
+        data["ball_position_error"] = [{"ball": 0, "angle_deg": 2.0}]
+        out.append(run(parse_case(data)).runout_pp_m["radial"])
+    assert out[1] / out[0] == pytest.approx(2.0, rel=1e-6)
+    assert out[2] / out[0] == pytest.approx(4.0, rel=1e-6)
+
+
+def test_runout_independent_of_spring_constant_while_all_balls_loaded():
+    res = []
+    for k in (1e7, 1e8):
+        data = copy.deepcopy(BASE)
+        data["bearing"]["ball_spring_N_per_m"] = k
+        data["waviness"] = [{"part": "inner", "order": 9, "amplitude_um_pp": AMP_UM},
+                            {"part": "outer", "order": 7, "amplitude_um_pp": AMP_UM}]
+        res.append(simulate(parse_case(data)).x_m)
+    np.testing.assert_allclose(res[0], res[1], atol=1e-18)
