@@ -1,0 +1,173 @@
+"""Transformation kinetics against closed forms: JMAK isothermal, Koistinen-Marburger, additivity convergence."""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from quenchsim.materials import load_material
+from quenchsim.metallurgy import advance, initial_state, load_kinetics
+from quenchsim.metallurgy.laws import li_sigmoid_integral
+
+R_CAL = 1.98720  # cal/(mol K)
+
+
+def _kin(name: str = "SUJ2", T_aust: float = 840.0, drop: tuple[str, ...] = ()):
+    material = copy.deepcopy(load_material(name))
+    for reaction in drop:
+        del material["kinetics"][reaction]
+    return load_kinetics(material, T_aust)
+
+
+def _hold(kin, T_C: float, times_s: np.ndarray):
+    """Isothermal hold from the austenitised state; returns the state at each time (steps of unequal length)."""
+    state = initial_state((1,), kin)
+    out, t_prev = [], 0.0
+    for t in times_s:
+        state = advance(state, kin, T_C, T_C, t - t_prev)
+        out.append(state)
+        t_prev = t
+    return out
+
+
+def test_li_sigmoid_integral_matches_published_values():
+    # S(X) of Li 1998 eq. 13, values computed in shared/reference/materials_and_kinetics.md 1b
+    for X, S in [(0.001, 0.02639), (0.01, 0.1043), (0.5, 1.026), (0.99, 1.947)]:
+        assert li_sigmoid_integral(X) == pytest.approx(S, rel=2e-3)
+
+
+def test_jmak_isothermal_pearlite_exact_against_li_closed_form():
+    """Isothermal pearlite at 650 C: the fraction follows X = 1 - exp(-(t/tau)^n) exactly, through Li's t(1 %), t(99 %)."""
+    kin = _kin("SUJ2", drop=("bainite",))
+    d = kin.dissolved
+    # Li et al. 1998 eqs. 13, 20-21 written out independently of the code
+    F = np.exp(-4.25 + 4.12 * d["C"] + 4.36 * d["Mn"] + 0.44 * d["Si"] + 3.33 * d["Cr"])
+    T = 650.0
+    tau1 = F / (2 ** (0.32 * 9) * (724.0 - T) ** 3 * np.exp(-27500.0 / (R_CAL * (T + 273.15))))
+    t_start, t_finish = tau1 * 0.1043, tau1 * 1.947
+    n = np.log(np.log(0.01) / np.log(0.99)) / np.log(t_finish / t_start)
+    tau = t_start / (-np.log(0.99)) ** (1.0 / n)
+    times = np.array([0.3, 1.0, 2.5, t_start, 7.0, 20.0, t_finish, 200.0])
+    X = np.array([s.fractions["pearlite"][0] for s in _hold(kin, T, times)])
+    expected = 1.0 - np.exp(-((times / tau) ** n))
+    assert X[3] == pytest.approx(0.01, rel=3e-3)
+    assert X[6] == pytest.approx(0.99, rel=1e-4)
+    np.testing.assert_allclose(X, expected, rtol=3e-3, atol=1e-12)
+    assert n == pytest.approx(2.09, abs=0.01)
+
+
+def test_jmak_isothermal_step_independent():
+    """Isothermal JMAK through additivity is exact whatever the steps: one step == 50 steps."""
+    kin = _kin("SUJ2", drop=("bainite",))
+    one = _hold(kin, 600.0, np.array([6.0]))[-1].fractions["pearlite"]
+    many = _hold(kin, 600.0, np.linspace(0.12, 6.0, 50))[-1].fractions["pearlite"]
+    assert 0.05 < one[0] < 0.999
+    assert many[0] == pytest.approx(one[0], rel=1e-12)
+
+
+def test_bainite_jmak_polynomial_reproduces_furlan_ttt():
+    """100Cr6 (Furlan et al. 2025) bainite: model times of the reference table (1 % start / 99 % end)."""
+    kin = _kin("100Cr6_furlan", T_aust=850.0)
+    for T, t_start, t_end in [(250.0, 209.0, 1116.0), (300.0, 48.0, 366.0), (350.0, 13.0, 133.0)]:
+        states = _hold(kin, T, np.array([t_start, t_end]))
+        assert states[0].fractions["bainite"][0] == pytest.approx(0.01, rel=0.06)
+        assert states[1].fractions["bainite"][0] == pytest.approx(0.99, abs=0.002)
+
+
+def test_koistinen_marburger_exact_and_irreversible():
+    kin = _kin("SUJ2", drop=("pearlite", "bainite"))
+    Ms, a = kin.Ms_C, kin.alpha_per_K
+    state = initial_state((3,), kin)
+    T_end = np.array([Ms + 10.0, 150.0, 20.0])
+    cooled = advance(state, kin, 840.0, T_end, 10.0)
+    expected = np.where(T_end < Ms, 1.0 - np.exp(-a * (Ms - T_end)), 0.0)
+    np.testing.assert_allclose(cooled.fractions["martensite"], expected, rtol=1e-13, atol=1e-15)
+    # many small steps give the same (the incremental form is exact on monotone cooling)
+    s, T_prev = state, 840.0
+    for T in np.linspace(800.0, 20.0, 97):
+        s = advance(s, kin, T_prev, T, 0.3)
+        T_prev = T
+    assert s.fractions["martensite"][2] == pytest.approx(expected[2], rel=1e-12)
+    # re-heating to 180 C and re-cooling to 150 C: no martensite lost, none gained above the previous minimum
+    s1 = advance(state, kin, 840.0, 120.0, 5.0)
+    s2 = advance(s1, kin, 120.0, 180.0, 5.0)
+    s3 = advance(s2, kin, 180.0, 150.0, 5.0)
+    assert np.all(s2.fractions["martensite"] == s1.fractions["martensite"])
+    assert np.all(s3.fractions["martensite"] == s1.fractions["martensite"])
+    s4 = advance(s3, kin, 150.0, 50.0, 5.0)
+    np.testing.assert_allclose(s4.fractions["martensite"], 1.0 - np.exp(-a * (Ms - 50.0)), rtol=1e-13)
+
+
+def _linear_cooling(kin, rate_C_s: float, T0: float, T1: float, dT_step: float) -> float:
+    state, T = initial_state((1,), kin), T0
+    n_steps = int(round((T0 - T1) / dT_step))
+    for k in range(n_steps):
+        Tn = T0 - (k + 1) * (T0 - T1) / n_steps
+        state = advance(state, kin, T, Tn, (T - Tn) / rate_C_s)
+        T = Tn
+    return float(state.fractions["pearlite"][0])
+
+
+def test_additivity_under_constant_cooling_rate_converges_with_fourth_order():
+    """Single reaction, linear cooling: exact X = 1 - exp(-I^n), I = int dt / tau(T(t)) (quadrature)."""
+    kin = _kin("SUJ2", drop=("bainite",))
+    reaction = kin.reactions["pearlite"]
+    # start at Ae1 (nothing happens above it), so the integrand is smooth over the cooling range
+    rate, T0, T1 = 15.0, reaction.T_upper_C, 300.0
+    I, _ = quad(lambda T: float(reaction.inverse_tau(T)) / rate, T1, T0, epsabs=1e-15, epsrel=1e-13, limit=400)
+    exact = 1.0 - np.exp(-(I ** reaction.params["n"]))
+    assert 0.2 < exact < 0.9
+    coarse = dataclasses.replace(kin, substep_K=1e9)  # one Gauss sub-step per time step: measure the method itself
+    steps = (T0 - T1) / np.array([8, 16, 32, 64])
+    errors = np.array([abs(_linear_cooling(coarse, rate, T0, T1, h) - exact) for h in steps])
+    orders = np.log2(errors[:-1] / errors[1:])
+    assert np.all(orders > 3.5), (errors, orders)  # 2-point Gauss-Legendre: 4th order
+    # the default sub-stepping (<= 5 K) makes even one 424 K step accurate, also across Ae1 from 840 C
+    assert _linear_cooling(kin, rate, T0, T1, T0 - T1) == pytest.approx(exact, abs=1e-6)
+    assert _linear_cooling(kin, rate, 840.0, T1, 540.0) == pytest.approx(exact, abs=1e-5)
+
+
+def test_competing_reactions_share_austenite_and_converge():
+    kin = _kin("SUJ3")
+    coarse = dataclasses.replace(kin, substep_K=1e9)
+    results = []
+    for dT in (40.0, 20.0, 10.0, 5.0, 1.25):
+        state, T = initial_state((1,), coarse), 840.0
+        while T > 20.0 + 1e-9:
+            Tn = max(T - dT, 20.0)
+            state = advance(state, coarse, T, Tn, (T - Tn) / 1.5)
+            T = Tn
+        total = sum(state.fractions.values())[0]
+        assert total == pytest.approx(1.0, abs=1e-12)
+        assert all(v[0] >= 0.0 for v in state.fractions.values())
+        results.append([state.fractions[p][0] for p in ("pearlite", "bainite", "martensite")])
+    results = np.array(results)
+    errors = np.abs(results[:-1] - results[-1]).max(axis=1)
+    assert results[-1][0] > 0.1 and results[-1][1] > 1e-3  # both diffusional products form at 1.5 C/s
+    assert errors[2] < errors[0] / 4.0  # at least first-order convergence with mixed reactions
+
+
+def test_advance_is_pure_and_vectorised_over_any_shape():
+    kin = _kin("SUJ3")
+    state = initial_state((4, 6), kin)
+    T_old = np.full((4, 6), 700.0)
+    T_new = np.linspace(150.0, 690.0, 24).reshape(4, 6)
+    before = {p: v.copy() for p, v in state.fractions.items()}
+    new = advance(state, kin, T_old, T_new, 2.0)
+    for p, v in state.fractions.items():
+        assert np.array_equal(v, before[p])
+    assert new.fractions["martensite"].shape == (4, 6)
+    np.testing.assert_allclose(sum(new.fractions.values()), 1.0, atol=1e-14)
+
+
+def test_cooling_rate_at_700_recorded_once():
+    kin = _kin("SUJ3")
+    s = initial_state((2,), kin)
+    s = advance(s, kin, np.array([840.0, 840.0]), np.array([720.0, 690.0]), 2.0)
+    assert np.isnan(s.cooling_rate_700_C_s[0]) and s.cooling_rate_700_C_s[1] == pytest.approx(75.0)
+    s = advance(s, kin, np.array([720.0, 690.0]), np.array([680.0, 600.0]), 4.0)
+    np.testing.assert_allclose(s.cooling_rate_700_C_s, [10.0, 75.0])
