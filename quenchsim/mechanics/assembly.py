@@ -1,0 +1,76 @@
+"""Axisymmetric kinematics and sparse assembly with a fixed sparsity pattern.
+
+Quadratic vector triangles (scikit-fem ``ElementVector(ElementTriP2())``); strains in Mandel form
+(rr, zz, tt, sqrt(2) rz) with eps_tt = u_r / r; integrals carry the weight r dr dz (per radian, the
+factor 2 pi cancels between internal and external forces).  The global matrix structure is computed
+once; every assembly only sums element values into the CSR data array (``np.bincount``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import Basis, ElementTriP2, ElementVector, MeshTri
+
+from quenchsim.mechanics.constitutive import SQRT2
+
+INTORDER = 4
+"""Quadrature order shared with the thermal/metallurgy basis ``Basis(mesh, ElementTriP2(), intorder=4)``."""
+
+
+class AxisymmetricAssembler:
+    """Strain-displacement matrices at the quadrature points and a reusable CSR pattern."""
+
+    def __init__(self, mesh: MeshTri, intorder: int = INTORDER) -> None:
+        self.mesh = mesh
+        self.basis = Basis(mesh, ElementVector(ElementTriP2()), intorder=intorder)
+        self.n_dofs = self.basis.N
+        self.element_dofs = self.basis.element_dofs.T.copy()  # (ne, 12)
+        self.radius = np.asarray(self.basis.global_coordinates())[0]  # (ne, nq)
+        self.weights = self.radius * self.basis.dx  # r dA per quadrature point
+        n_local = self.element_dofs.shape[1]
+        ne, nq = self.radius.shape
+        B = np.empty((ne, nq, 4, n_local))
+        for j in range(n_local):  # loop over the 12 local shape functions, not over elements
+            field = self.basis.basis[j][0]
+            val, grad = np.asarray(field), field.grad
+            B[:, :, 0, j] = grad[0, 0]
+            B[:, :, 1, j] = grad[1, 1]
+            B[:, :, 2, j] = val[0] / self.radius
+            B[:, :, 3, j] = (grad[0, 1] + grad[1, 0]) / SQRT2
+        self.B = B
+        rows = np.repeat(self.element_dofs[:, :, None], n_local, axis=2)
+        cols = np.repeat(self.element_dofs[:, None, :], n_local, axis=1)
+        keys = (rows.astype(np.int64) * self.n_dofs + cols).ravel()
+        unique, self._scatter = np.unique(keys, return_inverse=True)
+        self._indices = (unique % self.n_dofs).astype(np.int32)
+        row_of = unique // self.n_dofs
+        self._indptr = np.concatenate([[0], np.cumsum(np.bincount(row_of, minlength=self.n_dofs))]).astype(np.int32)
+        self._row_of = row_of
+        self.nnz = unique.size
+
+    def strain(self, u: np.ndarray) -> np.ndarray:
+        """Mandel strain (ne, nq, 4) of the displacement vector u."""
+        return np.einsum("eqaj,ej->eqa", self.B, u[self.element_dofs], optimize=True)
+
+    def internal_force(self, stress: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """f_int = int B^T sigma r dA and the same sum of absolute values (a round-off scale)."""
+        fe = np.einsum("eqaj,eqa,eq->ej", self.B, stress, self.weights, optimize=True)
+        dofs = self.element_dofs.ravel()
+        return (np.bincount(dofs, weights=fe.ravel(), minlength=self.n_dofs),
+                np.bincount(dofs, weights=np.abs(fe).ravel(), minlength=self.n_dofs))
+
+    def stiffness(self, tangent: np.ndarray) -> sp.csr_matrix:
+        """K = int B^T D B r dA on the fixed pattern."""
+        DB = np.einsum("eqab,eqbj,eq->eqaj", tangent, self.B, self.weights, optimize=True)
+        Ke = np.einsum("eqai,eqaj->eij", self.B, DB, optimize=True)
+        data = np.bincount(self._scatter, weights=Ke.ravel(), minlength=self.nnz)
+        return sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n_dofs, self.n_dofs))
+
+    def constrained_pattern(self, fixed_dofs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Positions in the CSR data of entries in fixed rows/columns, and of their diagonals."""
+        fixed = np.zeros(self.n_dofs, dtype=bool)
+        fixed[fixed_dofs] = True
+        touched = fixed[self._row_of] | fixed[self._indices]
+        diagonal = touched & (self._row_of == self._indices) & fixed[self._row_of]
+        return np.flatnonzero(touched), np.flatnonzero(diagonal)

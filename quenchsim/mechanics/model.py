@@ -1,0 +1,321 @@
+"""Mechanical material model: parsing of ``materials/NAME.mechanics.toml`` and the free (thermal +
+structural) strain of a phase mixture.
+
+Two forms of the free strain are accepted (``[free_strain] form``):
+
+* ``"specific_volume"`` -- the volume of every phase follows from its thermal expansion and its
+  volume change against austenite at a reference temperature, a linear function of the carbon it
+  inherits from the austenite (Thelning / ASM Handbook Vol. 4 relations
+  ``dV/V (%) = a_i + b_i C``), diluted by the undissolved carbide that all states share.  The linear
+  free strain of phase i relative to austenite at the austenitising temperature T_aust is
+
+      eps_i(T) = (1 + dV_i/V)^(1/3) (1 + e_i(T)) / (1 + e_A(T_aust)) - 1,
+      e_i(T)   = int_{T_ref}^{T} alpha_i(T') dT',
+
+  and the free strain of a mixture is the state function ``sum_i X_i eps_i(T)``; transformation
+  strains follow from the phases.
+* ``"expansion"`` -- the published form of many quench models (e.g. Furlan et al. 2025): per-phase
+  instantaneous expansion coefficients alpha_i(T) and a linear transformation strain gamma_i of
+  austenite -> phase i, taken at the temperature where the transformation happens.  It is path
+  dependent and defined by its rate, d eps = sum_i X_i alpha_i dT + sum_i gamma_i dX_i.
+
+Both are integrated by :func:`free_strain_increment`, which is exact for the first form (product
+rule with end-of-step fractions and start-of-step transformation strains) and is the published
+update of the second.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from quenchsim.errors import InputError
+from quenchsim.materials import PHASES, Property, parse_property
+
+FREE_STRAIN_FORMS = ("specific_volume", "expansion")
+TRIP_LAWS = ("desalos", "leblond")
+OPTION_KEYS = ("plasticity", "trip", "austenitizing_T_C", "newton_rtol", "max_newton_iterations")
+
+LEBLOND_CUTOFF = 0.03
+"""Leblond's TRIP kinetics use -ln(f); below f = 0.03 the slope is frozen at -ln(0.03)
+(Leblond, Devaux, Devaux, Int. J. Plast. 5 (1989) 573 -- cut-off of the logarithm)."""
+
+
+@dataclass(frozen=True)
+class MechanicsModel:
+    """Everything the mechanics solver needs about the steel and the case options."""
+
+    name: str
+    austenitizing_T_C: float
+    E_Pa: Property
+    nu: Property
+    free_strain_form: str
+    alpha_1_K: Property
+    reference_T_C: float
+    volume_change: Mapping[str, float]
+    transformation_strain: Property | None
+    annealed_free_strain: float
+    plasticity: bool
+    yield_Pa: Property | None
+    hardening_Pa: Property | None
+    hardening_memory: float
+    trip: bool
+    trip_K_1_Pa: Property | None
+    trip_law: str
+    newton_rtol: float
+    max_newton_iterations: int
+
+
+def integrate_property(prop: Property, T0_C: Any, T1_C: Any) -> np.ndarray:
+    """int_{T0}^{T1} p(T) dT of a phase-independent property (constant, polynomial or clamped table).
+
+    Used for the thermal strain e(T) = int alpha dT of an instantaneous expansion coefficient.
+    """
+    T0 = np.asarray(T0_C, dtype=float)
+    T1 = np.asarray(T1_C, dtype=float)
+    if prop.kind == "constant":
+        return prop.constant * (T1 - T0)
+    if prop.kind == "poly":
+        antideriv = np.polynomial.polynomial.polyint(prop.coefficients)
+        return (np.polynomial.polynomial.polyval(T1, antideriv)
+                - np.polynomial.polynomial.polyval(T0, antideriv))
+    if prop.kind == "table":
+        return _table_antiderivative(prop, T1) - _table_antiderivative(prop, T0)
+    raise ValueError("integrate_property needs a phase-independent property")
+
+
+def _table_antiderivative(prop: Property, T: np.ndarray) -> np.ndarray:
+    """F(T) = int_{T_C[0]}^{T} p of the linear table p, clamped (constant) outside its range."""
+    x, v = prop.T_C, prop.values
+    if x.size == 1:
+        return v[0] * (T - x[0])
+    knots = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(x))])
+    k = np.clip(np.searchsorted(x, T, side="right") - 1, 0, x.size - 2)
+    slope = (v[k + 1] - v[k]) / (x[k + 1] - x[k])
+    dT = np.clip(T, x[0], x[-1]) - x[k]
+    inside = knots[k] + dT * (v[k] + 0.5 * slope * dT)
+    return inside + np.where(T < x[0], (T - x[0]) * v[0], 0.0) + np.where(T > x[-1], (T - x[-1]) * v[-1], 0.0)
+
+
+def phase_thermal_strain(model: MechanicsModel, phase: str, T_C: Any) -> np.ndarray:
+    """e_i(T) = int_{T_ref}^{T} alpha_i dT' (T_ref: the volume reference of the specific-volume form,
+    T_aust for the expansion form)."""
+    return integrate_property(model.alpha_1_K.for_phase(phase), model.reference_T_C, T_C)
+
+
+def phase_free_strain(model: MechanicsModel, phase: str, T_C: Any) -> np.ndarray:
+    """Linear free strain eps_i(T) of pure phase i relative to austenite at T_aust.
+
+    Specific-volume form: eps_i = (1 + dV_i/V)^(1/3) (1 + e_i(T)) / (1 + e_A(T_aust)) - 1.
+    Expansion form: the thermal part e_i(T) = int_{T_aust}^T alpha_i dT' only (the transformation
+    strain is added per increment, see :func:`free_strain_increment`).
+    """
+    e = phase_thermal_strain(model, phase, T_C)
+    if model.free_strain_form == "expansion":
+        return e
+    e_aust = phase_thermal_strain(model, "austenite", model.austenitizing_T_C)
+    return (1.0 + model.volume_change[phase]) ** (1.0 / 3.0) * (1.0 + e) / (1.0 + e_aust) - 1.0
+
+
+def free_strain(model: MechanicsModel, T_C: Any, fractions: Mapping[str, Any]) -> np.ndarray:
+    """Isotropic linear free strain (thermal + structural) of a phase mixture relative to austenite at
+    T_aust: ``sum_i X_i eps_i(T)``.
+
+    Exact state function for the specific-volume form.  For the path-dependent expansion form it is
+    the value of a mixture whose transformations all happened at T (``sum_i X_i (e_i(T) + gamma_i)``);
+    the solver integrates the published rate form instead.
+    """
+    T = np.asarray(T_C, dtype=float)
+    out = np.zeros(np.broadcast_shapes(T.shape, *(np.shape(x) for x in fractions.values())))
+    for phase, X in fractions.items():
+        out += np.asarray(X) * phase_free_strain(model, phase, T)
+        if model.free_strain_form == "expansion":
+            out += np.asarray(X) * model.transformation_strain.for_phase(phase)(T)
+    return out
+
+
+def transformation_strain(model: MechanicsModel, phase: str, T_C: Any) -> np.ndarray:
+    """Linear strain gamma_i(T) of austenite -> phase i at temperature T (zero for austenite)."""
+    if model.free_strain_form == "expansion":
+        return model.transformation_strain.for_phase(phase)(T_C)
+    return phase_free_strain(model, phase, T_C) - phase_free_strain(model, "austenite", T_C)
+
+
+def free_strain_increment(model: MechanicsModel, T0_C: np.ndarray, T1_C: np.ndarray,
+                          X0: Mapping[str, np.ndarray], X1: Mapping[str, np.ndarray]) -> np.ndarray:
+    """Increment of the free strain over a step from (T0, X0) to (T1, X1):
+
+        d eps = sum_i X1_i [eps_i(T1) - eps_i(T0)] + sum_i (X1_i - X0_i) gamma_i(T0).
+
+    For the specific-volume form this is exactly free_strain(T1, X1) - free_strain(T0, X0) (product
+    rule, sum_i dX_i = 0); for the expansion form it is the update of Furlan et al. 2025
+    (``simulations/UMAT/stresses_heatgen.f90``: alpha of the end state times dT plus gamma dX).
+    """
+    out = np.zeros(np.broadcast_shapes(np.shape(T0_C), np.shape(T1_C)))
+    for phase in PHASES:
+        x1 = X1.get(phase)
+        if x1 is None:
+            continue
+        out += x1 * (phase_free_strain(model, phase, T1_C) - phase_free_strain(model, phase, T0_C))
+        if phase != "austenite":
+            out += (x1 - X0.get(phase, 0.0)) * transformation_strain(model, phase, T0_C)
+    return out
+
+
+def trip_saturation(law: str, f: np.ndarray) -> np.ndarray:
+    """phi(f) with eps_tp = K sigma phi(f) under constant uniaxial stress sigma (phi(0) = 0).
+
+    Desalos: phi = f (2 - f) (phi' = 2(1 - f)).  Leblond: phi' = -ln f, frozen at -ln f0 for
+    f < f0 = LEBLOND_CUTOFF, so phi = -f ln f0 (f < f0) and f (1 - ln f) - f0 above.
+    """
+    f = np.clip(f, 0.0, 1.0)
+    if law == "desalos":
+        return f * (2.0 - f)
+    f_safe = np.maximum(f, LEBLOND_CUTOFF)
+    return np.where(f < LEBLOND_CUTOFF, -f * np.log(LEBLOND_CUTOFF),
+                    f_safe * (1.0 - np.log(f_safe)) - LEBLOND_CUTOFF)
+
+
+def _property(table: Mapping[str, Any], key: str, prefix: str) -> Property:
+    if key not in table:
+        raise InputError(f"{prefix}.{key}", None, "is required")
+    return parse_property(table[key], f"{prefix}.{key}")
+
+
+def _table(data: Mapping[str, Any], key: str, prefix: str) -> Mapping[str, Any]:
+    sub = data.get(key)
+    if not isinstance(sub, Mapping):
+        raise InputError(f"{prefix}.{key}", sub, "a table is required")
+    return sub
+
+
+def _number(table: Mapping[str, Any], key: str, prefix: str, lo: float = -np.inf, hi: float = np.inf) -> float:
+    value = table.get(key)
+    if isinstance(value, Mapping):
+        value = value.get("value")
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not lo <= float(value) <= hi:
+        raise InputError(f"{prefix}.{key}", value, f"must be a number in [{lo}, {hi}]")
+    return float(value)
+
+
+def _volume_changes(fs: Mapping[str, Any], prefix: str) -> dict[str, float]:
+    """dV/V of austenite -> phase at reference_T_C, diluted by the undissolved carbide.
+
+    The matrix of the austenite holds carbon_matrix_wt_pct; the rest of the carbon stays as
+    cementite (mass fraction w_c = (C_bulk - C_m)/(C_cem - C_m), lever rule) which does not take
+    part in any transformation, so dV/V of the mixture is (1 - phi_c) (a_i + b_i C_m)/100 with the
+    carbide volume fraction phi_c = w_c * rho_steel/rho_cementite.
+    """
+    c_bulk = _number(fs, "carbon_bulk_wt_pct", prefix, 0.0, 2.1)
+    c_m = _number(fs, "carbon_matrix_wt_pct", prefix, 0.0, c_bulk)
+    c_cem = _number(fs, "cementite_carbon_wt_pct", prefix, c_bulk, 100.0)
+    ratio = _number(fs, "steel_to_cementite_density_ratio", prefix, 0.5, 2.0)
+    phi_c = (c_bulk - c_m) / (c_cem - c_m) * ratio
+    table = _table(fs, "volume_change_pct", prefix)
+    out = {"austenite": 0.0}
+    for phase in PHASES[1:]:
+        coeffs = table.get(phase)
+        if (not isinstance(coeffs, (list, tuple)) or len(coeffs) != 2
+                or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in coeffs)):
+            raise InputError(f"{prefix}.volume_change_pct.{phase}", coeffs, "must be [a, b] with dV/V (%) = a + b*C")
+        out[phase] = (1.0 - phi_c) * (coeffs[0] + coeffs[1] * c_m) / 100.0
+    return out
+
+
+def load_mechanics(material: Mapping[str, Any], options: Mapping[str, Any] | None = None) -> MechanicsModel:
+    """Build the :class:`MechanicsModel` from ``material["mechanics"]`` and the case ``[mechanics]`` options.
+
+    Options: ``plasticity`` (bool, default true), ``trip`` (bool, default true),
+    ``austenitizing_T_C`` (stress-free temperature; default the material file's
+    ``[reference] austenitizing_T_C``), ``newton_rtol`` (default 1e-8), ``max_newton_iterations``
+    (default 25).  Thermo-elastic mode = plasticity and trip false.  Errors name the field.
+    """
+    options = dict(options or {})
+    name = str(material.get("name", "material"))
+    mech = material.get("mechanics")
+    prefix = f"{name}.mechanics"
+    if not isinstance(mech, Mapping):
+        raise InputError(prefix, mech, f"material needs materials/{name}.mechanics.toml (or a [mechanics] table)")
+    for key in options:
+        if key not in OPTION_KEYS:
+            raise InputError(f"mechanics.{key}", options[key], f"unknown option; allowed: {', '.join(OPTION_KEYS)}")
+    for key in ("plasticity", "trip"):
+        if not isinstance(options.get(key, True), bool):
+            raise InputError(f"mechanics.{key}", options[key], "must be true or false")
+    plasticity = options.get("plasticity", True)
+    trip = options.get("trip", True)
+
+    reference = _table(mech, "reference", prefix)
+    T_aust = (_number(options, "austenitizing_T_C", "mechanics", 500.0, 1300.0) if "austenitizing_T_C" in options
+              else _number(reference, "austenitizing_T_C", f"{prefix}.reference", 500.0, 1300.0))
+    newton_rtol = _number(options, "newton_rtol", "mechanics", 1e-14, 1e-2) if "newton_rtol" in options else 1e-8
+    max_it = int(_number(options, "max_newton_iterations", "mechanics", 1, 1000)) if "max_newton_iterations" in options else 25
+
+    elastic = _table(mech, "elastic", prefix)
+    E = _property(elastic, "E_Pa", f"{prefix}.elastic")
+    nu = _property(elastic, "nu", f"{prefix}.elastic")
+
+    fs_prefix = f"{prefix}.free_strain"
+    fs = _table(mech, "free_strain", prefix)
+    form = fs.get("form")
+    if form not in FREE_STRAIN_FORMS:
+        raise InputError(f"{fs_prefix}.form", form, f"must be one of {FREE_STRAIN_FORMS}")
+    alpha = _property(fs, "alpha_1_K", fs_prefix)
+    if alpha.phase_dependent and any(alpha.for_phase(p).phase_dependent for p in PHASES):
+        raise InputError(f"{fs_prefix}.alpha_1_K", "nested per_phase", "per-phase entries must be constants, tables or polynomials")
+    if form == "specific_volume":
+        volume_change = _volume_changes(fs, fs_prefix)
+        gamma = None
+        ref_T = _number(fs, "reference_T_C", fs_prefix, -273.15, 1500.0)
+    else:
+        volume_change = {}
+        gamma = _property(fs, "transformation_strain", fs_prefix)
+        ref_T = T_aust
+
+    model_args = dict(name=name, austenitizing_T_C=T_aust, E_Pa=E, nu=nu, free_strain_form=form,
+                      alpha_1_K=alpha, reference_T_C=ref_T, volume_change=volume_change,
+                      transformation_strain=gamma, annealed_free_strain=0.0, plasticity=plasticity,
+                      yield_Pa=None, hardening_Pa=None, hardening_memory=0.0, trip=trip,
+                      trip_K_1_Pa=None, trip_law="desalos", newton_rtol=newton_rtol,
+                      max_newton_iterations=max_it)
+
+    annealed = _table(mech, "annealed", prefix)
+    if "free_strain" in annealed:
+        model_args["annealed_free_strain"] = _number(annealed, "free_strain", f"{prefix}.annealed", -0.1, 0.1)
+    elif form == "specific_volume":
+        phase = annealed.get("phase")
+        if phase not in PHASES:
+            raise InputError(f"{prefix}.annealed.phase", phase, f"must be one of {PHASES} (or give free_strain)")
+        T_ann = _number(annealed, "T_C", f"{prefix}.annealed", -273.15, 1500.0)
+        provisional = MechanicsModel(**model_args)
+        model_args["annealed_free_strain"] = float(phase_free_strain(provisional, phase, T_ann))
+    else:
+        raise InputError(f"{prefix}.annealed.free_strain", None, "is required for the expansion form")
+
+    if plasticity:
+        if not isinstance(mech.get("plastic"), Mapping):
+            raise InputError("mechanics.plasticity", True, f"{name} has no [plastic] table; set plasticity = false")
+        plastic = _table(mech, "plastic", prefix)
+        model_args["yield_Pa"] = _property(plastic, "yield_Pa", f"{prefix}.plastic")
+        model_args["hardening_Pa"] = _property(plastic, "hardening_Pa", f"{prefix}.plastic")
+        model_args["hardening_memory"] = _number(plastic, "hardening_memory", f"{prefix}.plastic", 0.0, 1.0)
+    if trip:
+        if not isinstance(mech.get("trip"), Mapping):
+            raise InputError("mechanics.trip", True, f"{name} has no [trip] table; set trip = false")
+        trip_table = _table(mech, "trip", prefix)
+        model_args["trip_K_1_Pa"] = _property(trip_table, "K_1_Pa", f"{prefix}.trip")
+        law = trip_table.get("law", "desalos")
+        if law not in TRIP_LAWS:
+            raise InputError(f"{prefix}.trip.law", law, f"must be one of {TRIP_LAWS}")
+        model_args["trip_law"] = law
+    return MechanicsModel(**model_args)
+
+
+def austenitized_scale(model: MechanicsModel) -> float:
+    """Factor that turns the room-temperature annealed ("before") geometry into the stress-free
+    austenitised geometry: x_hot = x_before / (1 + eps_annealed), eps_annealed being the free strain of
+    the annealed state relative to austenite at T_aust (``model.annealed_free_strain``)."""
+    return 1.0 / (1.0 + model.annealed_free_strain)

@@ -1,0 +1,221 @@
+"""Quasi-static axisymmetric thermo-elastic-plastic solver driven by temperature and phase histories.
+
+Unknown: the displacement (u_r, u_z) from the hot (austenitised, stress-free) geometry on quadratic
+triangles.  Per step the material-point state (free strain, plastic and TRIP strain tensors,
+equivalent plastic strain, stress) is advanced by :func:`~quenchsim.mechanics.constitutive.return_map`
+inside a full Newton iteration with the consistent tangent; the state is committed only when Newton
+converges, so the caller can cut the step and retry.
+
+Rigid-body motion: u_r = 0 on nodes on the axis (r = 0, solid parts); axial rigid motion is removed by
+fixing u_z of one node (``fixed_point``, or the node nearest the section centroid).  There is no
+radial rigid motion in axisymmetry.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from skfem import Basis, ElementTriP1, MeshTri
+
+from quenchsim.errors import InputError
+from quenchsim.materials import PHASES
+from quenchsim.mechanics.assembly import INTORDER, AxisymmetricAssembler
+from quenchsim.mechanics.constitutive import M_VEC, SQRT2, lame_bulk_shear, return_map, von_mises
+from quenchsim.mechanics.model import MechanicsModel, free_strain, free_strain_increment, trip_saturation
+
+AXIS_TOLERANCE = 1e-9
+"""Nodes with r below this fraction of the section size count as lying on the axis."""
+
+
+@dataclass(frozen=True)
+class StepInfo:
+    """Outcome of one :meth:`MechanicsSolver.step`."""
+
+    converged: bool
+    newton_iterations: int
+    residual_norm_N: float
+    plastic_points: int
+    max_d_eq_plastic: float
+    residual_history_N: tuple[float, ...] = ()
+
+
+@dataclass
+class _State:
+    free: np.ndarray     # (ne, nq) isotropic free strain relative to austenite at T_aust
+    plastic: np.ndarray  # (ne, nq, 4) Mandel plastic strain
+    trip: np.ndarray     # (ne, nq, 4) Mandel TRIP strain
+    eq_plastic: np.ndarray  # (ne, nq) equivalent plastic strain (hardening variable)
+    stress: np.ndarray   # (ne, nq, 4) Mandel stress
+
+
+class MechanicsSolver:
+    """Axisymmetric small-strain solver on ``mesh`` (MeshTri in metres, x = r >= 0, y = z)."""
+
+    def __init__(self, mesh: MeshTri, model: MechanicsModel, fixed_point: tuple[float, float] | None = None,
+                 *, dirichlet: Mapping[str, np.ndarray] | None = None) -> None:
+        """``dirichlet`` optionally adds homogeneous constraints {"r" | "z": vertex/node indices of
+        ``basis.doflocs`` columns // 2}, e.g. u_z = 0 on both ends for plane strain."""
+        if np.any(mesh.p[0] < -AXIS_TOLERANCE * np.ptp(mesh.p[0])):
+            raise InputError("mesh", float(mesh.p[0].min()), "radial coordinates must be >= 0 (x = r)")
+        self.mesh = mesh
+        self.model = model
+        self.asm = AxisymmetricAssembler(mesh, INTORDER)
+        self.basis = self.asm.basis
+        ne, nq = self.asm.radius.shape
+        self._state = _State(free=np.zeros((ne, nq)), plastic=np.zeros((ne, nq, 4)), trip=np.zeros((ne, nq, 4)),
+                             eq_plastic=np.zeros((ne, nq)), stress=np.zeros((ne, nq, 4)))
+        self._started = False
+        self.displacement_m = np.zeros(self.asm.n_dofs)
+        self.fixed_dofs = self._constraints(fixed_point, dirichlet or {})
+        self._zero_pos, self._diag_pos = self.asm.constrained_pattern(self.fixed_dofs)
+        self._projector = self._vertex_projector()
+
+    # ------------------------------------------------------------------ setup
+    def _constraints(self, fixed_point: tuple[float, float] | None, dirichlet: Mapping[str, np.ndarray]) -> np.ndarray:
+        locs = self.basis.doflocs  # (2, n_dofs); dofs 2k, 2k+1 are (u_r, u_z) of node k
+        r_nodes, z_nodes = locs[0, 0::2], locs[1, 0::2]
+        size = max(np.ptp(self.mesh.p[0]), np.ptp(self.mesh.p[1]))
+        fixed = [2 * np.flatnonzero(r_nodes <= AXIS_TOLERANCE * size)]
+        if fixed_point is None:
+            area = self.basis.dx
+            xq = np.asarray(self.basis.global_coordinates())
+            target = np.array([np.sum(xq[0] * area), np.sum(xq[1] * area)]) / np.sum(area)
+        else:
+            target = np.asarray(fixed_point, dtype=float)
+            if target.shape != (2,):
+                raise InputError("mechanics.fixed_point", fixed_point, "must be (r_m, z_m)")
+        vertex_nodes = self.basis.nodal_dofs[1] // 2
+        nearest = vertex_nodes[np.argmin((r_nodes[vertex_nodes] - target[0]) ** 2 + (z_nodes[vertex_nodes] - target[1]) ** 2)]
+        fixed.append(np.array([2 * nearest + 1]))
+        for comp, nodes in dirichlet.items():
+            if comp not in ("r", "z"):
+                raise InputError("mechanics.dirichlet", comp, "component must be 'r' or 'z'")
+            fixed.append(2 * np.asarray(nodes, dtype=int) + (comp == "z"))
+        return np.unique(np.concatenate(fixed))
+
+    def _vertex_projector(self) -> sp.csr_matrix:
+        """Lumped L2 projection of quadrature values onto the mesh vertices (P1)."""
+        p1 = Basis(self.mesh, ElementTriP1(), intorder=INTORDER)
+        ne, nq = self.asm.radius.shape
+        rows, vals = [], []
+        for j in range(3):
+            rows.append(np.repeat(p1.element_dofs[j][:, None], nq, axis=1))
+            vals.append(np.asarray(p1.basis[j][0]) * p1.dx)
+        rows = np.stack(rows).ravel()
+        vals = np.stack(vals).ravel()
+        cols = np.tile(np.arange(ne * nq), 3)
+        P = sp.csr_matrix((vals, (rows, cols)), shape=(self.mesh.p.shape[1], ne * nq))
+        return sp.diags(1.0 / np.asarray(P.sum(axis=1)).ravel()) @ P
+
+    # ------------------------------------------------------------------ stepping
+    def step(self, T_C: np.ndarray, fractions: Mapping[str, np.ndarray], T_prev_C: np.ndarray,
+             fractions_prev: Mapping[str, np.ndarray], external_force_N: np.ndarray | None = None) -> StepInfo:
+        """Advance from (T_prev, fractions_prev) to (T, fractions); commit the state if Newton converges.
+
+        Arrays are shaped (n_elements, n_quadrature_points) of ``Basis(mesh, ElementTriP2(), intorder=4)``.
+        ``external_force_N`` is a nodal load vector per radian (e.g. from
+        :func:`quenchsim.mechanics.loads.pressure_load`) at the end of the step.
+        """
+        model, asm, st = self.model, self.asm, self._state
+        shape = asm.radius.shape
+        X1 = {p: np.broadcast_to(np.asarray(fractions.get(p, 0.0), dtype=float), shape) for p in PHASES}
+        X0 = {p: np.broadcast_to(np.asarray(fractions_prev.get(p, 0.0), dtype=float), shape) for p in PHASES}
+        T1 = np.broadcast_to(np.asarray(T_C, dtype=float), shape)
+        T0 = np.broadcast_to(np.asarray(T_prev_C, dtype=float), shape)
+        free0 = st.free if self._started else free_strain(model, T0, X0)
+        free1 = free0 + free_strain_increment(model, T0, T1, X0, X1)
+
+        bulk, shear = lame_bulk_shear(model.E_Pa(T1, X1), model.nu(T1, X1))
+        yield_now = hardening = None
+        eq_plastic = st.eq_plastic
+        if model.plasticity:
+            transformed = np.clip(X0["austenite"] - X1["austenite"], 0.0, 1.0)
+            eq_plastic = st.eq_plastic * (1.0 - (1.0 - model.hardening_memory) * transformed)
+            hardening = model.hardening_Pa(T1, X1)
+            yield_now = model.yield_Pa(T1, X1) + hardening * eq_plastic
+        d_phi = None
+        if model.trip:
+            d_phi = np.zeros(shape)
+            for phase in PHASES[1:]:
+                d_phi += model.trip_K_1_Pa.for_phase(phase)(T1) * np.maximum(
+                    trip_saturation(model.trip_law, X1[phase]) - trip_saturation(model.trip_law, X0[phase]), 0.0)
+
+        f_ext = np.zeros(asm.n_dofs) if external_force_N is None else np.asarray(external_force_N, dtype=float)
+        u = self.displacement_m.copy()
+        base = free1[..., None] * M_VEC + st.plastic + st.trip
+        residual_norm, reference = np.inf, np.linalg.norm(f_ext)
+        history: list[float] = []
+        for iteration in range(model.max_newton_iterations + 1):
+            update = return_map(asm.strain(u) - base, bulk, shear, yield_now, hardening, d_phi)
+            f_int, f_abs = asm.internal_force(update.stress)
+            residual = f_int - f_ext
+            residual[self.fixed_dofs] = 0.0
+            residual_norm = float(np.linalg.norm(residual))
+            history.append(residual_norm)
+            if iteration == 0:
+                reference = max(reference, residual_norm)
+            tolerance = model.newton_rtol * reference + 1e-12 * float(np.linalg.norm(f_abs))
+            if residual_norm <= tolerance:
+                self._commit(u, free1, update, eq_plastic)
+                return StepInfo(True, iteration, residual_norm, int(np.count_nonzero(update.d_eq_plastic)),
+                                float(update.d_eq_plastic.max(initial=0.0)), tuple(history))
+            if iteration == model.max_newton_iterations or not np.isfinite(residual_norm):
+                break
+            K = asm.stiffness(update.tangent)
+            K.data[self._zero_pos] = 0.0
+            K.data[self._diag_pos] = 1.0
+            u = u - spla.spsolve(K.tocsc(), residual)
+        return StepInfo(False, model.max_newton_iterations, residual_norm, 0, 0.0, tuple(history))
+
+    def _commit(self, u: np.ndarray, free1: np.ndarray, update, eq_plastic: np.ndarray) -> None:
+        st = self._state
+        self.displacement_m = u
+        st.free = free1
+        st.plastic = st.plastic + update.d_plastic_strain
+        st.trip = st.trip + update.d_trip_strain
+        st.eq_plastic = eq_plastic + update.d_eq_plastic
+        st.stress = update.stress
+        self._started = True
+
+    # ------------------------------------------------------------------ results
+    @property
+    def stress_Pa(self) -> dict[str, np.ndarray]:
+        """Stress components at the quadrature points (rr, zz, tt, rz) in Pa, each (ne, nq)."""
+        s = self._state.stress
+        return {"rr": s[..., 0], "zz": s[..., 1], "tt": s[..., 2], "rz": s[..., 3] / SQRT2}
+
+    @property
+    def quadrature_state(self) -> dict[str, np.ndarray]:
+        """Committed material-point state: free strain, plastic and TRIP strains (tensor components
+        rr, zz, tt, rz), equivalent plastic strain and von Mises stress, at the quadrature points."""
+        st = self._state
+        out = {"free_strain": st.free, "equivalent_plastic_strain": st.eq_plastic,
+               "von_mises_Pa": von_mises(st.stress)}
+        for name, tensor in (("plastic_strain", st.plastic), ("trip_strain", st.trip)):
+            for k, comp in enumerate(("rr", "zz", "tt")):
+                out[f"{name}_{comp}"] = tensor[..., k]
+            out[f"{name}_rz"] = tensor[..., 3] / SQRT2
+        return out
+
+    def project_to_vertices(self, values: np.ndarray) -> np.ndarray:
+        """Lumped L2 projection of a quadrature field (ne, nq) onto the mesh vertices."""
+        return self._projector @ np.asarray(values).ravel()
+
+    def vertex_displacement(self) -> np.ndarray:
+        """Displacement (n_vertices, 2) of the mesh vertices."""
+        return self.displacement_m[self.basis.nodal_dofs].T
+
+    def nodal_fields(self) -> dict[str, np.ndarray]:
+        """Fields on the mesh vertices (``mesh.p`` order) for VTK output: displacement_m (n, 3, with a
+        zero hoop component), stress components and von Mises in Pa, equivalent plastic strain."""
+        u = self.vertex_displacement()
+        out = {"displacement_m": np.column_stack([u, np.zeros(len(u))])}
+        for comp, values in self.stress_Pa.items():
+            out[f"stress_{comp}_Pa"] = self.project_to_vertices(values)
+        out["von_mises_Pa"] = self.project_to_vertices(von_mises(self._state.stress))
+        out["equivalent_plastic_strain"] = self.project_to_vertices(self._state.eq_plastic)
+        return out

@@ -1,0 +1,55 @@
+"""Ring dimensions from a (deformed) section, section outline and nodal output fields."""
+
+import tomllib
+
+import numpy as np
+import pytest
+
+from quenchsim.materials import materials_dir
+from quenchsim.mechanics import (MechanicsSolver, dimension_change, load_mechanics, ring_dimensions,
+                                 section_outline)
+from quenchsim.mechanics import verification as v
+
+
+def _model():
+    with (materials_dir() / "SUJ3.mechanics.toml").open("rb") as fh:
+        return load_mechanics({"name": "SUJ3", "mechanics": tomllib.load(fh)}, {"plasticity": False, "trip": False})
+
+
+def test_undeformed_rectangle_dimensions():
+    mesh = v.tube_mesh(0.1, 0.15, 0.08, 3)
+    dims = ring_dimensions(mesh)
+    assert dims == pytest.approx({"id": 200.0, "od": 300.0, "width": 80.0}, rel=1e-12)
+
+
+def test_uniform_free_strain_scales_every_dimension():
+    mesh = v.tube_mesh(0.1, 0.15, 0.08, 3)
+    solver = MechanicsSolver(mesh, _model(), fixed_point=(0.1, 0.0))
+    T0, X0 = v.uniform_fields(solver, 850.0, 0.0)
+    T1, X1 = v.uniform_fields(solver, 20.0, 1.0)
+    assert solver.step(T1, X1, T0, X0).converged
+    eps = float(solver.quadrature_state["free_strain"].mean())
+    before, after = ring_dimensions(mesh), ring_dimensions(mesh, solver.displacement_m)
+    change = dimension_change(before, after)["change"]
+    for key in ("id", "od", "width"):
+        assert change[key] == pytest.approx(eps * before[key], rel=1e-9)
+
+
+def test_section_outline_is_closed_and_follows_the_boundary():
+    mesh = v.tube_mesh(0.1, 0.15, 0.08, 3)
+    outline = section_outline(mesh)
+    seg = np.diff(outline, axis=0)
+    assert np.allclose(outline[0], outline[-1])
+    assert np.sum(np.hypot(seg[:, 0], seg[:, 1])) == pytest.approx(2 * (0.05 + 0.08), rel=1e-12)
+
+
+def test_nodal_fields_shapes_and_projection():
+    mesh = v.tube_mesh(0.1, 0.15, 0.08, 3)
+    solver = MechanicsSolver(mesh, _model())
+    fields = solver.nodal_fields()
+    assert fields["displacement_m"].shape == (mesh.p.shape[1], 3)
+    for key in ("stress_rr_Pa", "stress_zz_Pa", "stress_tt_Pa", "stress_rz_Pa", "von_mises_Pa",
+                "equivalent_plastic_strain"):
+        assert fields[key].shape == (mesh.p.shape[1],)
+    ne, nq = solver.asm.radius.shape
+    assert np.allclose(solver.project_to_vertices(np.full((ne, nq), 3.5)), 3.5)
