@@ -236,10 +236,16 @@ def parse_case(data: dict[str, Any]) -> RunoutCase:
     for i, row in enumerate(_array_of_tables(data, "ball_position_error")):
         prefix = f"ball_position_error[{i}]"
         _known(row, {"ball", "angle_deg"}, prefix)
-        angle_err = _number(row, "angle_deg", prefix)
-        require(abs(angle_err) < 180.0 / balls, f"{prefix}.angle_deg", angle_err,
-                f"must be smaller than half the ball spacing, {180.0 / balls:.4g} deg")
-        position[_ball_index(row, prefix, balls)] += math.radians(angle_err)
+        position[_ball_index(row, prefix, balls)] += math.radians(_number(row, "angle_deg", prefix))
+    # the displaced balls must keep their order and not overlap: neighbouring centres at least
+    # 2 asin(D/d_m) apart on the pitch circle
+    centres = [2.0 * math.pi * j / balls + position[j] for j in range(balls)]
+    min_gap = 2.0 * math.asin(bd_mm / pd_mm)
+    for j in range(balls):
+        gap = (centres[(j + 1) % balls] + (2.0 * math.pi if j + 1 == balls else 0.0)) - centres[j]
+        require(gap >= min_gap, "ball_position_error", f"balls {j} and {(j + 1) % balls}",
+                f"are {math.degrees(gap):.4g} deg apart; balls of {bd_mm} mm on a {pd_mm} mm pitch circle "
+                f"need at least {math.degrees(min_gap):.4g} deg")
 
     case = RunoutCase(model=model, pitch_diameter_m=pd_mm * 1e-3, ball_diameter_m=bd_mm * 1e-3, balls=balls,
                       contact_angle_rad=angle, inner_groove_radius_ratio=fi, outer_groove_radius_ratio=fo,

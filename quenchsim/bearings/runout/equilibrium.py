@@ -48,10 +48,6 @@ class Equilibrium:
     iterations: int
 
 
-def _approach(u: np.ndarray, e: np.ndarray, g: np.ndarray) -> np.ndarray:
-    return e + np.einsum("nzk,nk->nz", g, u)
-
-
 def solve_equilibrium(interference_m: np.ndarray, ball_angle_rad: np.ndarray, contact_angle_rad: float,
                       free_ring: str, stiffness: float, exponent: float, axial_load_N: float) -> Equilibrium:
     """Solve the equilibrium of the module docstring at every time step.
@@ -62,43 +58,47 @@ def solve_equilibrium(interference_m: np.ndarray, ball_angle_rad: np.ndarray, co
     n, z = e.shape
     sigma = 1.0 if free_ring == "inner" else -1.0
     ca, sa = np.cos(contact_angle_rad), np.sin(contact_angle_rad)
-    g = np.stack([sigma * ca * np.cos(th), sigma * ca * np.sin(th), np.full_like(th, sa)], axis=-1)
-    force = np.array([0.0, 0.0, axial_load_N])
+    gx, gy = sigma * ca * np.cos(th), sigma * ca * np.sin(th)   # d s_j / d(x, y); d s_j / dz = sin(alpha)
     p = exponent
 
-    s0 = (axial_load_N / (z * stiffness * sa)) ** (1.0 / p)
-    u = np.zeros((n, 3))
-    u[:, 2] = (s0 - e.mean(axis=1)) / sa
+    def approach(u: np.ndarray) -> np.ndarray:
+        return e + gx * u[:, :1] + gy * u[:, 1:2] + sa * u[:, 2:3]
 
     def potential(s: np.ndarray, uz: np.ndarray) -> np.ndarray:
         sp = np.maximum(s, 0.0)
         return stiffness * (sp ** (p + 1.0)).sum(axis=1) / (p + 1.0) - axial_load_N * uz
 
+    s0 = (axial_load_N / (z * stiffness * sa)) ** (1.0 / p)
+    u = np.zeros((n, 3))
+    u[:, 2] = (s0 - e.mean(axis=1)) / sa
     for iteration in range(1, MAX_NEWTON_ITERATIONS + 1):
-        s = _approach(u, e, g)
+        s = approach(u)
         sp = np.maximum(s, 0.0)
         q = stiffness * sp ** p
         kt = p * stiffness * sp ** (p - 1.0) if p != 1.0 else np.where(s > 0.0, stiffness, 0.0)
-        r = np.einsum("nz,nzk->nk", q, g) - force
-        h = np.einsum("nz,nzi,nzj->nij", kt, g, g)
-        h += (1e-12 * np.trace(h, axis1=1, axis2=2) + 1e-300)[:, None, None] * np.eye(3)
+        r = np.stack([(q * gx).sum(axis=1), (q * gy).sum(axis=1), sa * q.sum(axis=1) - axial_load_N], axis=1)
+        kx, ky = kt * gx, kt * gy
+        hxx, hxy, hyy = (kx * gx).sum(axis=1), (kx * gy).sum(axis=1), (ky * gy).sum(axis=1)
+        hxz, hyz, hzz = sa * kx.sum(axis=1), sa * ky.sum(axis=1), sa * sa * kt.sum(axis=1)
+        h = np.stack([np.stack([hxx, hxy, hxz], -1), np.stack([hxy, hyy, hyz], -1),
+                      np.stack([hxz, hyz, hzz], -1)], axis=1)
+        h += (1e-12 * (hxx + hyy + hzz) + 1e-300)[:, None, None] * np.eye(3)
         du = -np.linalg.solve(h, r[..., None])[..., 0]
         # backtracking line search on the convex potential, only where the full step does not descend
         v0 = potential(s, u[:, 2])
-        slope = np.einsum("nk,nk->n", r, du)
+        slope = (r * du).sum(axis=1)
         step = np.ones(n)
         for _ in range(40):
             trial = u + step[:, None] * du
-            bad = potential(_approach(trial, e, g), trial[:, 2]) > v0 + _ARMIJO * step * slope + _ROUNDING * np.abs(v0)
+            bad = potential(approach(trial), trial[:, 2]) > v0 + _ARMIJO * step * slope + _ROUNDING * np.abs(v0)
             if not bad.any():
                 break
             step = np.where(bad, 0.5 * step, step)
         u = u + step[:, None] * du
         if np.max(np.abs(step[:, None] * du)) < STEP_TOLERANCE_M:
-            s = _approach(u, e, g)
-            sp = np.maximum(s, 0.0)
+            s = approach(u)
             return Equilibrium(x_m=u[:, 0], y_m=u[:, 1], z_m=u[:, 2], approach_m=s,
-                               load_N=stiffness * sp ** p, iterations=iteration)
+                               load_N=stiffness * np.maximum(s, 0.0) ** p, iterations=iteration)
     raise SolverError(f"ball-bearing equilibrium did not converge in {MAX_NEWTON_ITERATIONS} Newton iterations "
                       f"(largest step {np.max(np.abs(du)):.3g} m)")
 
