@@ -15,13 +15,15 @@ Deceleration at the start of free run, three ways:
   i while |D(i+1) - C_(i+2)| <= |C_alpha,(i+1)| alpha/100 (C_(i+2) = mean of D(n), n = i+2..N;
   C_alpha,(i+1) = mean of omega'(n), n = i+1..N), stop at the first failure; fit a line to the
   retained omega'(n) versus n and take its value at n = 1.
-* ``model`` (this module's own): the torque law T(omega) = I_eq (c0 + c1 omega + c2 omega^2),
-  c_i >= 0 (Coulomb, viscous and quadratic drag), integrated exactly in speed,
+* ``model`` (this module's own): a torque law T(omega) = I_eq g(omega) from two families,
+  g = c0 + c1 omega + c2 omega^2 (Coulomb, viscous, quadratic drag; c_i >= 0) and
+  g = c0 + c1 omega^p (Coulomb + power law, e.g. Palmgren's (nu n)^(2/3) viscous torque),
+  integrated exactly in speed,
       t(omega) = int_omega^omega0 dw / g(w),  theta(omega) = int_omega^omega0 w dw / g(w),
-      g = c0 + c1 w + c2 w^2,
-  and fitted by nonlinear least squares to ALL pulse times (parameters omega0, c0, c1, c2 and the
-  time of the first pulse); the start torque is I_eq g(omega0). Unlike the linear-fit methods it
-  is unbiased when the torque depends on speed.
+  each fitted by nonlinear least squares to ALL pulse times (unknowns omega0, the three law
+  parameters and the time of the first pulse); the family with the smaller residual is kept and
+  the start torque is I_eq g(omega0). Unlike the linear-fit methods it is unbiased when the
+  torque depends on speed (within the families).
 
 Equivalent inertia of rotor, cage/ball orbit and ball spin (no slip: omega_c / omega_r =
 (1 - gamma)/2, |omega_a / omega_r| = (d_m/D)(1 - gamma^2)/2, gamma = D cos(alpha)/d_m):
@@ -34,9 +36,7 @@ from __future__ import annotations
 
 import csv
 import math
-import tomllib
 from dataclasses import dataclass, field
-from importlib import resources
 from pathlib import Path
 from typing import Callable, Literal
 
@@ -45,7 +45,7 @@ from scipy.integrate import solve_ivp
 from scipy.interpolate import CubicHermiteSpline
 from scipy.optimize import least_squares
 
-from quenchsim.bearings.kinematics import BearingGeometry
+from quenchsim.bearings.kinematics import BearingGeometry, steel_properties
 from quenchsim.errors import InputError, SolverError, require
 
 Method = Literal["n-omega", "t-omega", "model"]
@@ -81,7 +81,7 @@ class Deceleration:
     slope_rad_s2: np.ndarray = field(repr=False)   # omega' (negative while slowing down)
     retained: np.ndarray = field(repr=False)       # bool mask over slope_x used in the final line fit
     line: tuple[float, float] = (0.0, 0.0)         # intercept, slope of the final line fit
-    coefficients: tuple[float, float, float] = (0.0, 0.0, 0.0)  # model only: c0, c1, c2
+    law: "TorqueLaw | None" = None                  # model only: the fitted deceleration law
 
 
 @dataclass(frozen=True)
@@ -224,21 +224,41 @@ def _speed_grid(omega0: float, omega_min: float, n: int) -> np.ndarray:
     return np.linspace(omega0, omega_min, n)
 
 
-def model_pulse_times(theta: np.ndarray, omega0: float, c: tuple[float, float, float],
+@dataclass(frozen=True)
+class TorqueLaw:
+    """Deceleration law g(omega) = T(omega) / I_eq (rad/s^2) of one model family:
+    ``polynomial``: g = c0 + c1 omega + c2 omega^2 (params c0, c1, c2 >= 0);
+    ``power``: g = c0 + c1 omega^p (params c0, c1 >= 0, p in [0.1, 4])."""
+
+    family: str
+    params: tuple[float, ...]
+
+    def __call__(self, omega: np.ndarray | float) -> np.ndarray | float:
+        if self.family == "polynomial":
+            c0, c1, c2 = self.params
+            return c0 + c1 * omega + c2 * omega * omega
+        c0, c1, p = self.params
+        return c0 + c1 * np.power(omega, p)
+
+
+MODEL_FAMILIES: tuple[str, ...] = ("polynomial", "power")
+_POWER_RANGE = (0.1, 4.0)
+
+
+def model_pulse_times(theta: np.ndarray, omega0: float, law: Callable[[np.ndarray], np.ndarray],
                       omega_min: float, grid: int) -> np.ndarray:
     """Times (s, from the first pulse) at which the model rotor has turned ``theta`` (rad), for
-    d omega/dt = -(c0 + c1 omega + c2 omega^2) starting at omega0.
+    d omega/dt = -law(omega) starting at omega0.
 
     t(omega) and theta(omega) are integrated over a uniform speed grid from omega0 down to omega_min
     with 4-point Gauss-Legendre per cell; t(theta) is then the cubic Hermite interpolant with
     dt/dtheta = 1/omega at the nodes. Angles beyond theta(omega_min) continue at omega_min, so an
     over-braked trial model gives large, smooth residuals instead of failing.
     """
-    c0, c1, c2 = c
     w = _speed_grid(omega0, omega_min, grid)
     a, b = w[:-1, None], w[1:, None]
     x = 0.5 * (a + b) + 0.5 * (b - a) * _GL_X[None, :]      # (b - a) < 0: integrating downwards
-    g = c0 + c1 * x + c2 * x * x
+    g = law(x)
     half = 0.5 * (a - b)[:, 0]
     dt = half * np.sum(_GL_W / g, axis=1)
     dth = half * np.sum(_GL_W * x / g, axis=1)
@@ -267,52 +287,60 @@ def _initial_guess(samples: SpeedSamples) -> tuple[float, np.ndarray]:
     return omega0, coef
 
 
-def model_method(pulse_times_s: np.ndarray) -> Deceleration:
-    """Fit of T(omega)/I_eq = c0 + c1 omega + c2 omega^2 (c_i >= 0) to all pulse times (module
-    docstring); deceleration at the first pulse = c0 + c1 omega0 + c2 omega0^2."""
-    t = validate_pulse_times(pulse_times_s)
-    samples = speed_samples(t)
-    t_rel = t - t[0]
-    theta = 2.0 * math.pi * np.arange(t.size, dtype=float)
+def _fit_family(family: str, t_rel: np.ndarray, samples: SpeedSamples) -> tuple[float, TorqueLaw, float]:
+    """Least-squares fit of one family to all pulse times -> (omega0, law, sum of squared residuals
+    in s^2). Unknowns are scaled by the start speed w_s, the mean deceleration d_s and the median
+    period T_s; the time of the first pulse is an unknown too (its own timing noise)."""
+    theta = 2.0 * math.pi * np.arange(t_rel.size, dtype=float)
     omega0, coef = _initial_guess(samples)
     omega_min = 0.5 * float(np.min(samples.omega_rad_s))
-    grid = max(_GRID_MIN, _GRID_PER_PULSE * t.size)
-    # scaled unknowns: omega0 / w_s, c0 / d_s, c1 w_s / d_s, c2 w_s^2 / d_s, t_first / T_s
+    grid = max(_GRID_MIN, _GRID_PER_PULSE * t_rel.size)
     w_s = omega0
     d_s = float(np.mean(-np.diff(samples.omega_rad_s) / np.diff(samples.t_s)))
     require(d_s > 0.0, "pulses", "speed not decreasing", "a free run must slow down on average")
-    T_s = float(np.median(np.diff(t)))
+    T_s = float(np.median(np.diff(t_rel)))
 
-    def unpack(x: np.ndarray) -> tuple[float, tuple[float, float, float], float]:
-        return x[0] * w_s, (x[1] * d_s, x[2] * d_s / w_s, x[3] * d_s / w_s**2), x[4] * T_s
+    if family == "polynomial":
+        def law_of(q: np.ndarray) -> TorqueLaw:
+            return TorqueLaw("polynomial", (float(q[0] * d_s), float(q[1] * d_s / w_s), float(q[2] * d_s / w_s**2)))
+        q0 = [coef[0] / d_s, coef[1] * w_s / d_s, coef[2] * w_s**2 / d_s]
+        q_lo, q_hi = [0.0, 0.0, 0.0], [np.inf, np.inf, np.inf]
+    else:
+        def law_of(q: np.ndarray) -> TorqueLaw:
+            return TorqueLaw("power", (float(q[0] * d_s), float(q[1] * d_s / w_s ** q[2]), float(q[2])))
+        start = coef[0] + coef[1] * w_s + coef[2] * w_s**2
+        q0 = [coef[0] / d_s, (start - coef[0]) / d_s, 1.0]
+        q_lo, q_hi = [0.0, 0.0, _POWER_RANGE[0]], [np.inf, np.inf, _POWER_RANGE[1]]
 
     def residual(x: np.ndarray) -> np.ndarray:
-        w0, c, t0 = unpack(x)
-        return (t0 + model_pulse_times(theta, w0, c, omega_min, grid) - t_rel) / T_s
+        law = law_of(x[2:])
+        return (x[1] * T_s + model_pulse_times(theta, x[0] * w_s, law, omega_min, grid) - t_rel) / T_s
 
-    x0 = np.array([omega0 / w_s, coef[0] / d_s, coef[1] * w_s / d_s, coef[2] * w_s**2 / d_s, 0.0])
-    x0[1:4] = np.maximum(x0[1:4], 1e-6)
-    lower = np.array([omega_min / w_s * 1.01, 0.0, 0.0, 0.0, -1.0])
-    upper = np.array([np.inf, np.inf, np.inf, np.inf, 1.0])
+    x0 = np.array([1.0, 0.0, *q0])
+    x0[2:4] = np.maximum(x0[2:4], 1e-6)
+    lower = np.array([omega_min / w_s * 1.01, -1.0, *q_lo])
+    upper = np.array([np.inf, 1.0, *q_hi])
     fit = least_squares(residual, x0, bounds=(lower, upper), method="trf", x_scale="jac",
                         xtol=1e-14, ftol=1e-14, gtol=1e-14, max_nfev=2000)
     if not fit.success:
-        raise SolverError(f"free-run model fit did not converge: {fit.message}")
-    w0, c, _ = unpack(fit.x)
-    decel0 = c[0] + c[1] * w0 + c[2] * w0 * w0
+        raise SolverError(f"free-run model fit ({family}) did not converge: {fit.message}")
+    return float(fit.x[0] * w_s), law_of(fit.x[2:]), float(np.sum(fit.fun**2)) * T_s**2
+
+
+def model_method(pulse_times_s: np.ndarray) -> Deceleration:
+    """Fit of both model families (polynomial, power; equal numbers of unknowns) to all pulse
+    times; the family with the smaller residual is kept; deceleration at the first pulse = g(omega0)."""
+    t = validate_pulse_times(pulse_times_s)
+    samples = speed_samples(t)
+    fits = [_fit_family(family, t - t[0], samples) for family in MODEL_FAMILIES]
+    w0, law, _ = min(fits, key=lambda f: f[2])
     x_s = samples.t_s
-    slope_model = -(c[0] + c[1] * samples.omega_rad_s + c[2] * samples.omega_rad_s**2)
-    return Deceleration(method="model", decel_rad_s2=float(decel0), omega0_rad_s=float(w0), n_used=int(t.size),
-                        slope_x=x_s, slope_rad_s2=slope_model, retained=np.ones(x_s.size, dtype=bool),
-                        coefficients=(float(c[0]), float(c[1]), float(c[2])))
+    return Deceleration(method="model", decel_rad_s2=float(law(w0)), omega0_rad_s=w0, n_used=int(t.size),
+                        slope_x=x_s, slope_rad_s2=-np.asarray(law(samples.omega_rad_s)),
+                        retained=np.ones(x_s.size, dtype=bool), law=law)
 
 
 # ----------------------------------------------------------------------------------- inertia
-
-def _steel() -> dict[str, float]:
-    text = resources.files("quenchsim.bearings").joinpath("data/bearing_steel.toml").read_text("utf-8")
-    return tomllib.loads(text)["steel"]
-
 
 def speed_ratios(geometry: BearingGeometry) -> tuple[float, float]:
     """(omega_c / omega_r, |omega_a / omega_r|) = ((1 - gamma)/2, (d_m/D)(1 - gamma^2)/2) for a
@@ -327,7 +355,7 @@ def ball_inertias_kg_m2(geometry: BearingGeometry, bearings: int = 1,
     Z m (d_m/2)^2, and about their own axes, Z (2/5) m (D/2)^2, with m = rho pi D^3 / 6 (rho of
     bearing steel from data/bearing_steel.toml unless given)."""
     require(isinstance(bearings, int) and bearings >= 1, "bearings", bearings, "must be an integer >= 1")
-    rho = _steel()["density_kg_m3"] if density_kg_m3 is None else density_kg_m3
+    rho = steel_properties()["density_kg_m3"] if density_kg_m3 is None else density_kg_m3
     require(math.isfinite(rho) and rho > 0.0, "density_kg_m3", rho, "must be positive")
     D = geometry.ball_diameter_m
     m = rho * math.pi * D**3 / 6.0

@@ -136,6 +136,14 @@ def bearing_names() -> list[str]:
 
 
 @functools.cache
+def steel_properties() -> dict[str, float]:
+    """Bearing steel (100Cr6 / AISI 52100): density_kg_m3, youngs_modulus_Pa, poisson, from
+    data/bearing_steel.toml (sources in that file)."""
+    text = resources.files("quenchsim.bearings").joinpath("data/bearing_steel.toml").read_text("utf-8")
+    return {k: v for k, v in tomllib.loads(text)["steel"].items() if k != "source"}
+
+
+@functools.cache
 def _table() -> dict[str, BearingData]:
     return _load_table()
 

@@ -48,6 +48,16 @@ def test_model_recovers_start_torque_of_every_law(law, seed):
     assert r.n_used == t.size
 
 
+def test_model_recovers_palmgren_like_power_law():
+    # Coulomb + viscous term growing as omega^(2/3) (Palmgren's (nu n)^(2/3)): only the power family
+    law = lambda w: 0.03 + 0.03 * (w / OMEGA0) ** (2.0 / 3.0)  # noqa: E731
+    t = fr.simulate_pulse_times(INERTIA, law, OMEGA0, 0.02 * OMEGA0, clock_hz=1e6, jitter_s=2e-6,
+                                rng=np.random.default_rng(21))
+    r = fr.friction_torque(t, INERTIA, "model")
+    assert r.torque_Nm == pytest.approx(0.06, rel=0.01)
+    assert r.detail.law.family == "power" and r.detail.law.params[2] == pytest.approx(2.0 / 3.0, abs=0.02)
+
+
 def test_linear_fit_methods_are_biased_for_speed_dependent_torque():
     t = coast_down("coulomb+linear+quadratic", 5)
     true = torque("coulomb+linear+quadratic")(OMEGA0)
@@ -70,7 +80,7 @@ def test_model_forward_matches_independent_integration():
     c = tuple(v / INERTIA for v in LAWS[law])
     theta = 2.0 * math.pi * np.arange(t.size)
     speeds = fr.speed_samples(t).omega_rad_s
-    model = fr.model_pulse_times(theta, OMEGA0, c, 0.5 * speeds.min(), 3 * t.size)
+    model = fr.model_pulse_times(theta, OMEGA0, fr.TorqueLaw("polynomial", c), 0.5 * speeds.min(), 3 * t.size)
     assert np.max(np.abs(model - t)) < 1e-8  # s, over ~14 s of coast-down
 
 
