@@ -28,8 +28,12 @@ peaks where (z/b)^2 = (sqrt(5) - 1)/2, i.e. z = 0.7862 b, tau_1 = 0.3003 p_max.
 
 from __future__ import annotations
 
+import functools
 import math
+import tomllib
 from dataclasses import dataclass
+from importlib import resources
+from typing import Any
 
 import numpy as np
 from scipy.optimize import brentq
@@ -94,6 +98,14 @@ class _EllipseShape:
     R: float
     E_eff: float
     major_axis: str
+
+
+@functools.cache
+def reference_data() -> dict[str, Any]:
+    """Published numbers for checks (data/hertz_reference.toml): the Timoshenko-Goodier table of the
+    ellipse coefficients m, n and the roller-clutch line contacts of reference sec. 7."""
+    text = resources.files("quenchsim.bearings").joinpath("data/hertz_reference.toml").read_text("utf-8")
+    return tomllib.loads(text)
 
 
 def effective_modulus_Pa(E1_Pa: float, nu1: float, E2_Pa: float, nu2: float) -> float:

@@ -21,17 +21,6 @@ from quenchsim.bearings import free_run as fr  # noqa: E402
 from quenchsim.bearings import grease, hertz  # noqa: E402
 from quenchsim.bearings import kinematics as kin  # noqa: E402
 
-# Classical table of the Hertz coefficients m, n (a = m (3 pi Q (k1 + k2) / (4 (A + B)))^(1/3), b = n (...))
-# versus theta = arccos((B - A)/(A + B)): S. Timoshenko & J. N. Goodier, Theory of Elasticity, 3rd ed.
-# (McGraw-Hill 1970), chapter on contact stresses, table of the contact-ellipse coefficients m and n.
-TIMOSHENKO_THETA_DEG = (30, 35, 40, 45, 50, 55, 60, 65, 70, 75, 80, 85, 90)
-TIMOSHENKO_M = (2.731, 2.397, 2.136, 1.926, 1.754, 1.611, 1.486, 1.378, 1.284, 1.202, 1.128, 1.061, 1.000)
-TIMOSHENKO_N = (0.493, 0.530, 0.567, 0.604, 0.641, 0.678, 0.717, 0.759, 0.802, 0.846, 0.893, 0.944, 1.000)
-
-# Line contacts of the two-way roller clutch (reference sec. 7): roller load (N) -> printed contact
-# pressures (MPa, inner / outer) and depth of the maximum shear stress (mm).
-CLUTCH_CASES = ((29812.0, 3144.0, 2966.0, 0.227), (62172.0, 4538.0, 4284.0, 0.331))
-
 # Free-run study: the spindle of the free-run paper (I_eq ~ 1.72e-3 kg m^2, 3600 rpm), timing by a
 # 1 MHz crystal counter with 2 us trigger jitter, one pulse per revolution, recorded down to 2 % of
 # the start speed. Torque laws T = c0 + c1 omega + c2 omega^2 (N m, omega in rad/s).
@@ -84,12 +73,18 @@ def plot_free_run(pulse_times_s: np.ndarray, result: fr.FreeRunResult, path: pat
     ax1.legend()
     ax1.set_title(f"free run: {pulse_times_s.size} pulses")
     x, y, keep = d.slope_x, d.slope_rad_s2, d.retained
-    ax2.plot(x[~keep], y[~keep], ".", ms=2, color="0.6", label="not retained")
-    ax2.plot(x[keep], y[keep], ".", ms=2, label="retained" if d.method != "model" else "model omega'(t)")
-    if d.method != "model":
+    if d.method == "model":
+        fd = np.diff(s.omega_rad_s) / np.diff(s.t_s)
+        ax2.plot(s.t_s[:-1], fd, ".", ms=2, color="0.6", label="finite differences (for reference)")
+        ax2.plot(x, y, "-", lw=1.5, label="fitted law: omega' = -g(omega(t))")
+        ax2.set_ylim(1.5 * float(y.min()), 0.0)
+    else:
+        ax2.plot(x[~keep], y[~keep], ".", ms=2, color="0.6", label="not retained")
+        ax2.plot(x[keep], y[keep], ".", ms=2, label="retained")
         p, q = d.line
-        xs = np.array([0.0 if d.method == "t-omega" else 1.0, float(x.max())])
-        ax2.plot(xs, p + q * xs, "-", lw=1, label="line fit")
+        xs = (np.linspace(0.0, float(x.max()), 200) if d.method == "t-omega"
+              else np.geomspace(1.0, float(x.max()), 200))
+        ax2.plot(xs, p + q * xs, "-", lw=1, label="line fit (value at t = 0 / n = 1)")
     ax2.set_xlabel("n (samples)" if d.method == "n-omega" else "t (s)")
     ax2.set_ylabel("omega' (rad/s^2)")
     ax2.set_title(f"{d.method}: T = {result.torque_Nm:.5g} N m")
@@ -345,6 +340,8 @@ def _exact(ratio: float) -> tuple[float, float, float]:
 
 
 def _hertz_page(reports_dir: pathlib.Path) -> list[pathlib.Path]:
+    ref = hertz.reference_data()
+    tg, clutch = ref["timoshenko_goodier"], ref["roller_clutch"]
     steel = kin.steel_properties()
     E, nu = steel["youngs_modulus_Pa"], steel["poisson"]
     Ep = hertz.effective_modulus_Pa(E, nu, E, nu)
@@ -355,7 +352,7 @@ def _hertz_page(reports_dir: pathlib.Path) -> list[pathlib.Path]:
         "elliptic integrals, ellipticity solved from the Hertz ratio equation); tests `tests/bearings/test_hertz.py`.",
         f"Steel: E = {E / 1e9:g} GPa, nu = {nu:g} (E' = {Ep / 1e9:.1f} GPa).",
         "",
-        "## Classical Hertz coefficients (Timoshenko & Goodier, Theory of Elasticity, 3rd ed., table of m, n)",
+        f"## Classical Hertz coefficients ({tg['source']})",
         "",
         "a = m (3 Q R / E')^(1/3), b = n (3 Q R / E')^(1/3) with cos(theta) = (B - A)/(A + B), 1/R = 1/R_x + 1/R_y.",
         "",
@@ -363,7 +360,7 @@ def _hertz_page(reports_dir: pathlib.Path) -> list[pathlib.Path]:
         "|---|---|---|---|---|---|---|---|",
     ]
     worst = 0.0
-    for th, m_t, n_t in zip(TIMOSHENKO_THETA_DEG, TIMOSHENKO_M, TIMOSHENKO_N):
+    for th, m_t, n_t in zip(tg["theta_deg"], tg["m"], tg["n"]):
         c = math.cos(math.radians(th))
         cx, cy = 1.0 + c, 1.0 - c
         r = hertz.point_contact(1.0, 1.0 / cx, 1.0 / cy, 1e15, 1e15, E, nu, E, nu)
@@ -438,7 +435,9 @@ def _hertz_page(reports_dir: pathlib.Path) -> list[pathlib.Path]:
     ]
 
     # roller clutch line contacts
-    (Q1, pi1, po1, z1), (Q2, pi2, po2, z2) = CLUTCH_CASES
+    cases = list(zip(clutch["roller_load_N"], clutch["p_inner_MPa"], clutch["p_outer_MPa"],
+                     clutch["depth_max_shear_mm"]))
+    (Q1, pi1, po1, z1), (Q2, pi2, po2, z2) = cases
     b1 = z1 * 1e-3 / hertz.LINE_SHEAR_DEPTH_RATIO
     w1 = math.pi * pi1 * 1e6 * b1 / 2.0
     L = Q1 / w1
@@ -462,7 +461,7 @@ def _hertz_page(reports_dir: pathlib.Path) -> list[pathlib.Path]:
         "| roller load (N) | p inner printed | p inner | p outer printed | p outer | depth printed (mm) | depth (mm) |",
         "|---|---|---|---|---|---|---|",
     ]
-    for Q, p_i, p_o, z in CLUTCH_CASES:
+    for Q, p_i, p_o, z in cases:
         ci = hertz.line_contact(Q, L, Ri, 1e12, E, nu, E, nu)
         co = hertz.line_contact(Q, L, Ro, 1e12, E, nu, E, nu)
         lines.append(f"| {Q:g} | {p_i:g} | {ci.p_max_Pa / 1e6:.0f} | {p_o:g} | {co.p_max_Pa / 1e6:.0f} | {z:g} | "

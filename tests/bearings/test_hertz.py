@@ -82,3 +82,41 @@ def test_bad_input():
         hertz.effective_modulus_Pa(STEEL_E, 0.6, STEEL_E, 0.3)
     with pytest.raises(InputError, match="outer_groove_radius_ratio"):
         hertz.ball_race_stiffness(0.008, 0.0335, 0.0, 0.515, 0.49, STEEL_E, STEEL_NU)
+
+
+def test_timoshenko_goodier_coefficient_table():
+    # a = m (3 Q R / E')^(1/3), b = n (...)^(1/3), cos(theta) = (B - A)/(A + B) -- the classical table
+    tg = hertz.reference_data()["timoshenko_goodier"]
+    Ep = hertz.effective_modulus_Pa(STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    for th, m, n in zip(tg["theta_deg"], tg["m"], tg["n"]):
+        c = math.cos(math.radians(th))
+        cx, cy = 1.0 + c, 1.0 - c  # curvature sums (1/m) in the two principal planes
+        r = hertz.point_contact(50.0, 1.0 / cx, 1.0 / cy, 1e15, 1e15, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+        scale = (3.0 * 50.0 / (cx + cy) / Ep) ** (1.0 / 3.0)
+        assert r.a_m / scale == pytest.approx(m, rel=0.01), th
+        assert r.b_m / scale == pytest.approx(n, rel=0.01), th
+
+
+def test_roller_clutch_pressures_from_geometry_fixed_by_first_case():
+    # The reference prints loads, pressures and max-shear depths but no geometry. Fix the contact
+    # length and the two effective radii from the first load case (depth = 0.786 b, inner contact);
+    # the second load case is then an independent check of the line-contact solution.
+    rc = hertz.reference_data()["roller_clutch"]
+    Ep = hertz.effective_modulus_Pa(STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    Q1, Q2 = rc["roller_load_N"]
+    b1 = rc["depth_max_shear_mm"][0] * 1e-3 / hertz.LINE_SHEAR_DEPTH_RATIO
+    w1 = math.pi * rc["p_inner_MPa"][0] * 1e6 * b1 / 2.0
+    length = Q1 / w1
+    R_in = math.pi * Ep * b1**2 / (8.0 * w1)
+    b_out = 2.0 * w1 / (math.pi * rc["p_outer_MPa"][0] * 1e6)
+    R_out = math.pi * Ep * b_out**2 / (8.0 * w1)
+    inner = hertz.line_contact(Q2, length, R_in, 1e12, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    outer = hertz.line_contact(Q2, length, R_out, 1e12, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    assert inner.p_max_Pa / 1e6 == pytest.approx(rc["p_inner_MPa"][1], rel=0.002)
+    assert outer.p_max_Pa / 1e6 == pytest.approx(rc["p_outer_MPa"][1], rel=0.002)
+    # the printed depths grow 1.46x for a sqrt(load) factor of 1.44: ~1 % off Hertz scaling
+    assert inner.depth_max_shear_m * 1e3 == pytest.approx(rc["depth_max_shear_mm"][1], rel=0.015)
+    # the first case is reproduced by construction, and the geometry is a plausible clutch
+    first = hertz.line_contact(Q1, length, R_in, 1e12, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    assert first.p_max_Pa / 1e6 == pytest.approx(rc["p_inner_MPa"][0], rel=1e-9)
+    assert 0.005 < length < 0.05 and 0.002 < R_in < R_out < 0.02
