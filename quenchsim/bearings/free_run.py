@@ -57,6 +57,8 @@ MIN_PULSES = 5
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(4)
 _GRID_PER_PULSE = 3
 _GRID_MIN = 600
+# Evaluation budget of one family's least-squares fit (converged fits of ~400-pulse records take 20-80).
+_MAX_NFEV = 400
 
 
 @dataclass(frozen=True)
@@ -81,7 +83,7 @@ class Deceleration:
     slope_rad_s2: np.ndarray = field(repr=False)   # omega' (negative while slowing down)
     retained: np.ndarray = field(repr=False)       # bool mask over slope_x used in the final line fit
     line: tuple[float, float] = (0.0, 0.0)         # intercept, slope of the final line fit
-    law: "TorqueLaw | None" = None                  # model only: the fitted deceleration law
+    law: TorqueLaw | None = None                    # model only: the fitted deceleration law
 
 
 @dataclass(frozen=True)
@@ -287,15 +289,15 @@ def _initial_guess(samples: SpeedSamples) -> tuple[float, np.ndarray]:
     return omega0, coef
 
 
-def _fit_family(family: str, t_rel: np.ndarray, samples: SpeedSamples) -> tuple[float, TorqueLaw, float]:
+def _fit_family(family: str, t_rel: np.ndarray, samples: SpeedSamples) -> tuple[float, TorqueLaw, float, bool]:
     """Least-squares fit of one family to all pulse times -> (omega0, law, sum of squared residuals
-    in s^2). Unknowns are scaled by the start speed w_s, the mean deceleration d_s and the median
+    in s^2, converged). Unknowns are scaled by the start speed w_s, the mean deceleration d_s and the median
     period T_s; the time of the first pulse is an unknown too (its own timing noise)."""
     theta = 2.0 * math.pi * np.arange(t_rel.size, dtype=float)
     omega0, coef = _initial_guess(samples)
     omega_min = 0.5 * float(np.min(samples.omega_rad_s))
     grid = max(_GRID_MIN, _GRID_PER_PULSE * t_rel.size)
-    w_s = omega0
+    w_s = float(samples.omega_rad_s[0])
     d_s = float(np.mean(-np.diff(samples.omega_rad_s) / np.diff(samples.t_s)))
     require(d_s > 0.0, "pulses", "speed not decreasing", "a free run must slow down on average")
     T_s = float(np.median(np.diff(t_rel)))
@@ -316,15 +318,14 @@ def _fit_family(family: str, t_rel: np.ndarray, samples: SpeedSamples) -> tuple[
         law = law_of(x[2:])
         return (x[1] * T_s + model_pulse_times(theta, x[0] * w_s, law, omega_min, grid) - t_rel) / T_s
 
-    x0 = np.array([1.0, 0.0, *q0])
+    x0 = np.array([omega0 / w_s, 0.0, *q0])
     x0[2:4] = np.maximum(x0[2:4], 1e-6)
     lower = np.array([omega_min / w_s * 1.01, -1.0, *q_lo])
     upper = np.array([np.inf, 1.0, *q_hi])
+    x0 = np.clip(x0, lower, np.minimum(upper, 1e6))
     fit = least_squares(residual, x0, bounds=(lower, upper), method="trf", x_scale="jac",
-                        xtol=1e-14, ftol=1e-14, gtol=1e-14, max_nfev=2000)
-    if not fit.success:
-        raise SolverError(f"free-run model fit ({family}) did not converge: {fit.message}")
-    return float(fit.x[0] * w_s), law_of(fit.x[2:]), float(np.sum(fit.fun**2)) * T_s**2
+                        xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=_MAX_NFEV)
+    return float(fit.x[0] * w_s), law_of(fit.x[2:]), float(np.sum(fit.fun**2)) * T_s**2, bool(fit.success)
 
 
 def model_method(pulse_times_s: np.ndarray) -> Deceleration:
@@ -332,8 +333,11 @@ def model_method(pulse_times_s: np.ndarray) -> Deceleration:
     times; the family with the smaller residual is kept; deceleration at the first pulse = g(omega0)."""
     t = validate_pulse_times(pulse_times_s)
     samples = speed_samples(t)
-    fits = [_fit_family(family, t - t[0], samples) for family in MODEL_FAMILIES]
-    w0, law, _ = min(fits, key=lambda f: f[2])
+    fits = [f for f in (_fit_family(family, t - t[0], samples) for family in MODEL_FAMILIES) if f[3]]
+    if not fits:
+        raise SolverError(f"free-run model fit did not converge within {_MAX_NFEV} evaluations for any family "
+                          f"({', '.join(MODEL_FAMILIES)}); use --method n-omega")
+    w0, law, _, _ = min(fits, key=lambda f: f[2])
     x_s = samples.t_s
     return Deceleration(method="model", decel_rad_s2=float(law(w0)), omega0_rad_s=w0, n_used=int(t.size),
                         slope_x=x_s, slope_rad_s2=-np.asarray(law(samples.omega_rad_s)),
