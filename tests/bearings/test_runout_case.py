@@ -126,6 +126,8 @@ def test_cli_json_and_outputs(tmp_path, capsys):
     csv = np.loadtxt(data["trajectory_csv"], delimiter=",", skiprows=1)
     assert csv.shape == (3600, 4)
     assert all(pathlib.Path(p).is_file() for p in data["plots"])
+    spec = np.loadtxt(data["spectra_csv"][0], delimiter=",", skiprows=1)
+    assert spec.shape == (1801, 4)
 
 
 def test_cli_bad_input_exit_2(tmp_path, capsys):

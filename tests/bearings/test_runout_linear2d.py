@@ -9,9 +9,12 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from quenchsim.bearings.runout import parse_case, run
 from quenchsim.bearings.runout.analysis import simulate, spectra_and_peaks
+from quenchsim.bearings.runout.excitation import excitation
 
 Z = 8
 ALPHA = math.radians(19.8)
@@ -142,3 +145,46 @@ def test_runout_independent_of_spring_constant_while_all_balls_loaded():
                             {"part": "outer", "order": 7, "amplitude_um_pp": AMP_UM}]
         res.append(simulate(parse_case(data)).x_m)
     np.testing.assert_allclose(res[0], res[1], atol=1e-18)
+
+
+@settings(max_examples=15, deadline=None)
+@given(orders=st.lists(st.integers(1, 30), min_size=1, max_size=4),
+       amps=st.lists(st.floats(0.001, 0.1), min_size=4, max_size=4),
+       parts=st.lists(st.sampled_from(["inner", "outer"]), min_size=4, max_size=4),
+       dev=st.floats(-0.1, 0.1), rotating=st.sampled_from(["inner", "outer"]))
+def test_linear_model_closed_form(orders, amps, parts, dev, rotating):
+    """All balls loaded, equal spacing: the free ring sits at
+    x + i y = -sigma (2/Z) sum_j u_j exp(i theta_j)  and  z = (s0 - cos(a) mean(u)) / sin(a)
+    (u_j: radial interference of ball j; sigma = +1 inner ring free, -1 outer ring free)."""
+    data = copy.deepcopy(BASE)
+    data["operation"].update(rotating=rotating, revolutions=2, step_deg=2.0)
+    data["bearing"]["ball_spring_N_per_m"] = 1.0e7
+    data["waviness"] = [{"part": p, "order": o, "amplitude_um_pp": a} for o, a, p in zip(orders, amps, parts)]
+    data["ball_diameter_deviation"] = [{"ball": 2, "deviation_um": dev}]
+    case = parse_case(data)
+    exc = excitation(case)
+    tr = simulate(case)
+    u = exc.race_m + exc.ball_m
+    sigma = 1.0 if rotating == "inner" else -1.0
+    c = -sigma * 2.0 / Z * (u * np.exp(1j * exc.ball_angle_rad)).sum(axis=1)
+    np.testing.assert_allclose(tr.x_m, c.real, atol=1e-16)
+    np.testing.assert_allclose(tr.y_m, c.imag, atol=1e-16)
+    s0 = case.axial_load_N / (Z * 0.5e7 * math.sin(ALPHA))
+    np.testing.assert_allclose(tr.z_m, (s0 - math.cos(ALPHA) * u.mean(axis=1)) / math.sin(ALPHA), rtol=1e-12)
+
+
+def test_excitation_of_one_inner_waviness_by_hand():
+    """Inner ring turning at f_r, ball j at theta_j = 2 pi f_c t + 2 pi j / Z: the inner raceway
+    seen by ball j is (A/2) cos(l (theta_j - 2 pi f_r t) - phase)."""
+    data = copy.deepcopy(BASE)
+    data["waviness"] = [{"part": "inner", "order": 5, "amplitude_um_pp": 0.2, "phase_deg": 30.0}]
+    case = parse_case(data)
+    exc = excitation(case)
+    fr = 1800 / 60.0
+    gamma = 2.0 * math.cos(ALPHA) / 9.0
+    fc = 0.5 * (1 - gamma) * fr
+    t = exc.time_s[:, None]
+    theta = 2 * np.pi * fc * t + 2 * np.pi * np.arange(Z) / Z
+    np.testing.assert_allclose(exc.ball_angle_rad, theta, atol=1e-12)
+    np.testing.assert_allclose(exc.race_m, 0.1e-6 * np.cos(5 * (theta - 2 * np.pi * fr * t) - math.radians(30.0)),
+                               atol=1e-18)

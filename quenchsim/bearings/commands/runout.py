@@ -1,6 +1,6 @@
 """`quenchsim bearings runout INPUT.toml`: ball-bearing run-out / NRRO from form errors.
 
-Writes the ring-centre trajectory CSV (and orbit / spectrum plots unless --no-plots) into --out
+Writes the ring-centre trajectory and spectra CSVs (and orbit / spectrum plots unless --no-plots) into --out
 and returns the model, identified spectral peaks, run-out and NRRO as one JSON object.
 """
 
@@ -10,7 +10,7 @@ import argparse
 import pathlib
 
 from quenchsim.bearings.runout import load_case, run as run_case
-from quenchsim.bearings.runout.output import summary, write_trajectory_csv
+from quenchsim.bearings.runout.output import summary, write_spectra_csv, write_trajectory_csv
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -26,6 +26,7 @@ def run(args: argparse.Namespace) -> dict:
     result = run_case(case)
     csv = write_trajectory_csv(result, out / "trajectory.csv")
     data = summary(result, csv)
+    data["spectra_csv"] = [str(p) for p in write_spectra_csv(result, out)]
     if not args.no_plots:
         from quenchsim.bearings.runout.plots import orbit_plot, spectrum_plot
 

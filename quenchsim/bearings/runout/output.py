@@ -1,4 +1,4 @@
-"""Run-out outputs: the ring-centre trajectory CSV and the JSON summary of one run."""
+"""Run-out outputs: the ring-centre trajectory and spectra CSVs and the JSON summary of one run."""
 
 from __future__ import annotations
 
@@ -19,6 +19,21 @@ def write_trajectory_csv(result: RunoutResult, path: pathlib.Path) -> pathlib.Pa
     data = np.column_stack([tr.time_s, tr.x_m * _UM, tr.y_m * _UM, tr.z_m * _UM])
     np.savetxt(path, data, delimiter=",", header="time_s,x_um,y_um,z_um", comments="", fmt="%.12g")
     return path
+
+
+def write_spectra_csv(result: RunoutResult, directory: pathlib.Path) -> list[pathlib.Path]:
+    """spectra.csv: frequency_hz and the p-p amplitude spectra (um) of x, y and z; whirl.csv: signed
+    frequency_hz and the p-p whirl spectrum (um) of x + i y (positive = forward)."""
+    directory.mkdir(parents=True, exist_ok=True)
+    sp = result.spectra
+    real = directory / "spectra.csv"
+    np.savetxt(real, np.column_stack([sp["x"].frequency_hz, sp["x"].amplitude_pp_m * _UM, sp["y"].amplitude_pp_m * _UM,
+                                      sp["axial"].amplitude_pp_m * _UM]),
+               delimiter=",", header="frequency_hz,x_um_pp,y_um_pp,z_um_pp", comments="", fmt="%.10g")
+    whirl = directory / "whirl.csv"
+    np.savetxt(whirl, np.column_stack([sp["radial"].frequency_hz, sp["radial"].amplitude_pp_m * _UM]),
+               delimiter=",", header="frequency_hz,radial_um_pp", comments="", fmt="%.10g")
+    return [real, whirl]
 
 
 def summary(result: RunoutResult, trajectory_csv: pathlib.Path | None) -> dict[str, Any]:

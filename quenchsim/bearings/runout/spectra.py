@@ -12,9 +12,9 @@ one line at +f of amplitude r (backward: at -f).
 Peaks are refined by the two-bin interpolation of the Hann window: with the peak bin amplitude
 A_k and its larger neighbour A_(k+-1), r = A_(k+-1) / A_k, the offset is d = (2r - 1)/(r + 1) bins
 towards the neighbour and the amplitude A_k / W(d) with the Hann kernel
-W(d) = sin(pi d) / (pi d (1 - d^2)) (exact for an isolated tone; E. Jacobsen & P. Kootsookos,
-"Fast, accurate frequency estimators", IEEE Signal Processing Magazine 24(3), 2007, for the
-family of windowed-DFT interpolators; the Hann kernel from its closed-form transform).
+W(d) = sin(pi d) / (pi d (1 - d^2)), exact for an isolated tone (T. Grandke, "Interpolation
+algorithms for discrete Fourier transforms of weighted signals", IEEE Trans. Instrum. Meas. 32(2),
+1983, 350-355).
 """
 
 from __future__ import annotations
@@ -91,16 +91,3 @@ def find_peaks(s: Spectrum, threshold_m: float) -> list[Peak]:
         d = min(max(d, 0.0), 0.5)
         peaks.append(Peak(s.direction, float(f[i] + side * d * s.bin_hz), float(a[i] / _hann_kernel(d))))
     return peaks
-
-
-def line_amplitude_pp_m(s: Spectrum, frequency_hz: float) -> float:
-    """Interpolated p-p amplitude of a line expected at frequency_hz: the peak within one bin of
-    it, or the spectrum's largest value within that bin range if there is no local maximum."""
-    a, f = s.amplitude_pp_m, s.frequency_hz
-    near = np.abs(f - frequency_hz) <= 1.0 * s.bin_hz
-    if not near.any():
-        return 0.0
-    for p in find_peaks(s, 0.0):
-        if abs(p.frequency_hz - frequency_hz) <= 1.0 * s.bin_hz:
-            return p.amplitude_pp_m
-    return float(a[near].max())
