@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import functools
 import math
+import numbers
 import tomllib
 from dataclasses import dataclass
 from importlib import resources
@@ -40,7 +41,7 @@ class BearingGeometry:
         D, dm = self.ball_diameter_m, self.pitch_diameter_m
         require(math.isfinite(D) and D > 0.0, "ball_diameter_m", D, "must be a positive length")
         require(math.isfinite(dm) and dm > D, "pitch_diameter_m", dm, f"must exceed ball_diameter_m = {D}")
-        require(isinstance(self.balls, int) and not isinstance(self.balls, bool) and self.balls >= 1,
+        require(isinstance(self.balls, numbers.Integral) and not isinstance(self.balls, bool) and self.balls >= 1,
                 "balls", self.balls, "must be an integer >= 1")
         require(math.isfinite(self.contact_angle_rad) and 0.0 <= self.contact_angle_rad < math.pi / 2.0,
                 "contact_angle_rad", self.contact_angle_rad, "must lie in [0, pi/2)")
