@@ -1,0 +1,266 @@
+"""Equations of motion of the big-end bearing in the frame rotating with the crank pin.
+
+Frame: origin at the pin centre P, x' along the crank arm, rotating at omega (crank speed; for the
+static and rig modes the inner ring speed, with P fixed: crank radius 0). Bodies: N rollers (x, y,
+spin angle), cage (x, y, angle), outer ring (x, y; its rotation relative to the frame, Omega_o(t),
+is imposed by the mechanism). State y = [q, v], q = [x_r(N), y_r(N), phi_r(N), x_c, y_c, psi_c,
+x_o, y_o], v = dq/dt: 6 N + 10 first-order ODEs. For a body of mass m at rho with relative velocity u:
+    m du/dt = F + m [ r_c omega^2 e_x' - r_c omega_dot e_y'          (frame-origin acceleration)
+                      + omega^2 rho                                (centrifugal)
+                      - 2 omega z x u                              (Coriolis)
+                      - omega_dot z x rho ] + m g'                 (Euler; gravity rotated into the frame)
+    I dOmega/dt = M - I omega_dot                                  (Omega relative to the frame)
+Contacts (vectorised over the rollers): roller-pin and roller-outer race (Palmgren line contact with
+damping, EHL traction), roller-pocket (flat pocket faces at +-w/2 from the pocket's radial line,
+Palmgren contact over the pocket contact length, Coulomb friction), cage land-outer ring (short
+journal bearing with squeeze film down to the smallest film h_min, solid land contact beyond it), cage unbalance.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from quenchsim.bearings.big_end.contact import coulomb_friction, damped_contact_force
+from quenchsim.bearings.big_end.ehl import (
+    hertz_line_max_pressure, pan_hamrock_central_film, thermal_loading, thermal_reduction_factor,
+    traction_coefficient)
+from quenchsim.bearings.big_end.journal import short_bearing_force
+
+
+class Params(NamedTuple):
+    """Flat model parameters (SI) handed to the compiled right-hand side."""
+
+    n: int
+    r_roller: float
+    r_in: float
+    r_out: float
+    m_roller: float
+    i_roller: float
+    m_cage: float
+    i_cage: float
+    m_ring: float
+    pocket_half_width: float
+    pocket_angles: np.ndarray
+    l_roller: np.ndarray  # (n,) effective roller length
+    l_pocket: np.ndarray  # (n,) pocket contact length
+    l_land: np.ndarray  # (1,) total land length for the solid guide contact
+    land_radius: float
+    land_width: float
+    lands: float
+    guide_clearance: float  # radial
+    e_star: float
+    damping_ratio: float
+    mu_pocket: float
+    mu_boundary: float
+    mu_guide: float
+    v_reg: float
+    eta0: float
+    alpha: float
+    beta_t: float
+    k_oil: float
+    mu_lim: float
+    slide_roll_scale: float
+    roughness: float
+    film_lo: float
+    film_hi: float
+    u_floor: float
+    eps_max: float
+    guide_min_film: float
+    r_eff_in: np.ndarray  # (n,)
+    r_eff_out: np.ndarray  # (n,)
+    omega: float
+    omega_dot: float
+    crank_radius: float
+    gravity_x: float  # inertial
+    gravity_y: float
+    unbalance: float  # kg m
+    table_theta: np.ndarray
+    table_fx: np.ndarray  # external force on the outer ring, frame components
+    table_fy: np.ndarray
+    table_omega_o: np.ndarray  # outer-ring angular velocity relative to the frame
+
+
+def n_states(n_rollers: int) -> int:
+    """6 N + 10."""
+    return 6 * n_rollers + 10
+
+
+@njit(cache=True)
+def _traction(q, ue, slide, r_eff, p):
+    w = q / p.l_roller
+    ue_f = np.maximum(ue, p.u_floor)
+    s = slide / ue_f
+    ph = hertz_line_max_pressure(w, r_eff, p.e_star)
+    phi = thermal_reduction_factor(ph, p.e_star, thermal_loading(p.beta_t, p.eta0, ue_f, p.k_oil), s)
+    hc = pan_hamrock_central_film(w, ue_f, r_eff, p.e_star, p.eta0, p.alpha) * phi
+    return traction_coefficient(s, hc / p.roughness, p.mu_lim, p.slide_roll_scale, p.mu_boundary,
+                                p.film_lo, p.film_hi)
+
+
+@njit(cache=True)
+def _pocket_face(sgn, q, dx, dy, erx, ery, etx, ety, vxr, vyr, wr, vxc, vyc, wc, p):
+    """Force (fx, fy) and moment on the rollers and moment on the cage of one pocket face (sgn = +-1)."""
+    r = p.r_roller
+    ax = sgn * r * etx  # contact point relative to roller centre
+    ay = sgn * r * ety
+    cx = dx + ax  # relative to cage centre
+    cy = dy + ay
+    vrx = vxr - wr * ay
+    vry = vyr + wr * ax
+    vcx = vxc - wc * cy
+    vcy = vyc + wc * cx
+    vs = (vrx - vcx) * erx + (vry - vcy) * ery
+    f = coulomb_friction(q, vs, p.mu_pocket, p.v_reg)
+    fx = -sgn * q * etx - f * erx
+    fy = -sgn * q * ety - f * ery
+    m_roller = ax * fy - ay * fx
+    m_cage = -(cx * fy - cy * fx)
+    return fx, fy, m_roller, m_cage
+
+
+@njit(cache=True)
+def evaluate(t, y, p):
+    """Accelerations (3N + 5,) plus per-roller pocket force, pin and outer-race loads."""
+    n = p.n
+    nq = 3 * n + 5
+    xr = y[0:n]
+    yr = y[n:2 * n]
+    xc, yc, psi = y[3 * n], y[3 * n + 1], y[3 * n + 2]
+    xo, yo = y[3 * n + 3], y[3 * n + 4]
+    v = y[nq:]
+    vxr = v[0:n]
+    vyr = v[n:2 * n]
+    wr = v[2 * n:3 * n]
+    vxc, vyc, wc = v[3 * n], v[3 * n + 1], v[3 * n + 2]
+    vxo, vyo = v[3 * n + 3], v[3 * n + 4]
+    r = p.r_roller
+    m_r = np.full(n, p.m_roller)
+
+    theta = p.omega * t
+    th = theta % (2.0 * np.pi)
+    fx_ext = np.interp(th, p.table_theta, p.table_fx)
+    fy_ext = np.interp(th, p.table_theta, p.table_fy)
+    omega_o = np.interp(th, p.table_theta, p.table_omega_o)
+
+    # roller - pin (inner race, fixed in the frame)
+    d = np.sqrt(xr * xr + yr * yr)
+    nx = xr / d
+    ny = yr / d
+    tx = -ny
+    ty = nx
+    q_in = damped_contact_force(p.r_in + r - d, -(vxr * nx + vyr * ny), p.l_roller, p.e_star, m_r,
+                                p.damping_ratio)
+    ut = vxr * tx + vyr * ty
+    mu = _traction(q_in, 0.5 * np.abs(r * wr + ut), ut - r * wr, p.r_eff_in, p)
+    fxr = q_in * nx - mu * q_in * tx
+    fyr = q_in * ny - mu * q_in * ty
+    mr = r * mu * q_in
+
+    # roller - outer race
+    sx = xr - xo
+    sy = yr - yo
+    d = np.sqrt(sx * sx + sy * sy)
+    nx = sx / d
+    ny = sy / d
+    tx = -ny
+    ty = nx
+    q_out = damped_contact_force(d + r - p.r_out, (vxr - vxo) * nx + (vyr - vyo) * ny, p.l_roller, p.e_star,
+                                 m_r, p.damping_ratio)
+    ut_r = vxr * tx + vyr * ty
+    ut_o = vxo * tx + vyo * ty + omega_o * p.r_out
+    mu = _traction(q_out, 0.5 * np.abs(r * wr + ut_o - ut_r), ut_r + r * wr - ut_o, p.r_eff_out, p)
+    fxr -= q_out * nx + mu * q_out * tx
+    fyr -= q_out * ny + mu * q_out * ty
+    mr -= r * mu * q_out
+    fxo = np.sum(q_out * nx + mu * q_out * tx)
+    fyo = np.sum(q_out * ny + mu * q_out * ty)
+
+    # roller - cage pocket
+    ang = psi + p.pocket_angles
+    erx = np.cos(ang)
+    ery = np.sin(ang)
+    etx = -ery
+    ety = erx
+    dx = xr - xc
+    dy = yr - yc
+    s = dx * etx + dy * ety
+    a = dx * erx + dy * ery
+    sdot = (vxr - vxc) * etx + (vyr - vyc) * ety - wc * a
+    m_pair = m_r * p.m_cage / (m_r + p.m_cage)
+    q_lead = damped_contact_force(s + r - p.pocket_half_width, sdot, p.l_pocket, p.e_star, m_pair, p.damping_ratio)
+    q_trail = damped_contact_force(-s + r - p.pocket_half_width, -sdot, p.l_pocket, p.e_star, m_pair,
+                                   p.damping_ratio)
+    fx1, fy1, mr1, mc1 = _pocket_face(1.0, q_lead, dx, dy, erx, ery, etx, ety, vxr, vyr, wr, vxc, vyc, wc, p)
+    fx2, fy2, mr2, mc2 = _pocket_face(-1.0, q_trail, dx, dy, erx, ery, etx, ety, vxr, vyr, wr, vxc, vyc, wc, p)
+    fxr += fx1 + fx2
+    fyr += fy1 + fy2
+    mr += mr1 + mr2
+    fxc = -np.sum(fx1 + fx2)
+    fyc = -np.sum(fy1 + fy2)
+    mc = np.sum(mc1 + mc2)
+
+    # cage land - outer ring: short journal bearing film (+ solid contact when the film is below h_min)
+    ex = xc - xo
+    ey = yc - yo
+    gx, gy, torque = short_bearing_force(ex, ey, vxc - vxo, vyc - vyo, wc, omega_o, p.land_radius,
+                                         p.land_width, p.guide_clearance, p.eta0, p.eps_max)
+    fxc += p.lands * gx
+    fyc += p.lands * gy
+    mc += p.lands * torque
+    fxo -= p.lands * gx
+    fyo -= p.lands * gy
+    e = np.hypot(ex, ey)
+    gap_limit = p.guide_clearance - p.guide_min_film
+    if e > gap_limit:
+        ux = ex / e
+        uy = ey / e
+        rate = np.array([(vxc - vxo) * ux + (vyc - vyo) * uy])
+        qg = damped_contact_force(np.array([e - gap_limit]), rate, p.l_land, p.e_star,
+                                  np.array([p.m_cage]), p.damping_ratio)[0]
+        slip = (vxc - vxo) * (-uy) + (vyc - vyo) * ux + wc * p.land_radius - omega_o * (p.land_radius + p.guide_clearance)
+        fg = coulomb_friction(np.array([qg]), np.array([slip]), p.mu_guide, p.v_reg)[0]
+        fxc += -qg * ux + fg * uy
+        fyc += -qg * uy - fg * ux
+        mc -= fg * p.land_radius
+        fxo += qg * ux - fg * uy
+        fyo += qg * uy + fg * ux
+
+    # cage unbalance (centrifugal force of the unbalance at the absolute cage speed)
+    w_abs = p.omega + wc
+    fxc += p.unbalance * w_abs * w_abs * np.cos(psi)
+    fyc += p.unbalance * w_abs * w_abs * np.sin(psi)
+
+    # external load on the outer ring
+    fxo += fx_ext
+    fyo += fy_ext
+
+    # frame (non-inertial) terms + gravity per unit mass
+    w = p.omega
+    wd = p.omega_dot
+    ax0 = p.crank_radius * w * w + p.gravity_x * np.cos(theta) + p.gravity_y * np.sin(theta)
+    ay0 = -p.crank_radius * wd - p.gravity_x * np.sin(theta) + p.gravity_y * np.cos(theta)
+
+    acc = np.empty(nq)
+    acc[0:n] = fxr / p.m_roller + ax0 + w * w * xr + 2.0 * w * vyr + wd * yr
+    acc[n:2 * n] = fyr / p.m_roller + ay0 + w * w * yr - 2.0 * w * vxr - wd * xr
+    acc[2 * n:3 * n] = mr / p.i_roller - wd
+    acc[3 * n] = fxc / p.m_cage + ax0 + w * w * xc + 2.0 * w * vyc + wd * yc
+    acc[3 * n + 1] = fyc / p.m_cage + ay0 + w * w * yc - 2.0 * w * vxc - wd * xc
+    acc[3 * n + 2] = mc / p.i_cage - wd
+    acc[3 * n + 3] = fxo / p.m_ring + ax0 + w * w * xo + 2.0 * w * vyo + wd * yo
+    acc[3 * n + 4] = fyo / p.m_ring + ay0 + w * w * yo - 2.0 * w * vxo - wd * xo
+    return acc, q_lead + q_trail, q_in, q_out
+
+
+@njit(cache=True)
+def rhs(t, y, p):
+    """dy/dt = [v, a(q, v, t)]."""
+    nq = 3 * p.n + 5
+    acc, _, _, _ = evaluate(t, y, p)
+    out = np.empty(2 * nq)
+    out[:nq] = y[nq:]
+    out[nq:] = acc
+    return out
