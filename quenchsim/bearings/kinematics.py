@@ -80,6 +80,7 @@ class BearingData:
     contact_angle_rad: float
     dynamic_rating_N: float
     source: str
+    static_rating_N: float | None = None
 
     @property
     def geometry(self) -> BearingGeometry:
@@ -127,7 +128,8 @@ def _load_table() -> dict[str, BearingData]:
             width_m=row["width_mm"] * 1e-3, ball_diameter_m=row["ball_diameter_mm"] * 1e-3,
             balls=int(row["balls"]), pitch_diameter_m=row["pitch_diameter_mm"] * 1e-3,
             contact_angle_rad=math.radians(row["contact_angle_deg"]),
-            dynamic_rating_N=row["dynamic_rating_kN"] * 1e3, source=row["source"])
+            dynamic_rating_N=row["dynamic_rating_kN"] * 1e3, source=row["source"],
+            static_rating_N=row["static_rating_kN"] * 1e3 if "static_rating_kN" in row else None)
     return out
 
 

@@ -6,6 +6,7 @@ import pytest
 from scipy.special import ellipe, ellipk
 
 from quenchsim.bearings import hertz
+from quenchsim.bearings import kinematics as kin
 from quenchsim.errors import InputError
 
 STEEL_E, STEEL_NU = 2.08e11, 0.3
@@ -120,3 +121,20 @@ def test_roller_clutch_pressures_from_geometry_fixed_by_first_case():
     first = hertz.line_contact(Q1, length, R_in, 1e12, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
     assert first.p_max_Pa / 1e6 == pytest.approx(rc["p_inner_MPa"][0], rel=1e-9)
     assert 0.005 < length < 0.05 and 0.002 < R_in < R_out < 0.02
+
+
+@pytest.mark.parametrize("name", ["6204", "6205", "6206"])
+def test_iso76_contact_stress_at_static_rating(name):
+    # ISO 76: at Fr = C0r the most heavily loaded ball (Q = 5 C0r / Z) presses the inner raceway
+    # (groove 0.52 Dw; outer 0.53 Dw) with 4200 MPa at the contact centre (E = 207 GPa, nu = 0.3).
+    iso = hertz.reference_data()["iso76"]
+    b = kin.bearing(name)
+    E, nu = iso["youngs_modulus_Pa"], iso["poisson"]
+    Q = iso["stribeck_factor"] * b.static_rating_N / b.balls
+    D = b.ball_diameter_m
+    (rxi, ryi), (rxo, ryo) = hertz.race_radii_m(D, b.pitch_diameter_m, 0.0, iso["inner_groove_radius_ratio"],
+                                                iso["outer_groove_radius_ratio"])
+    inner = hertz.point_contact(Q, D / 2, D / 2, rxi, ryi, E, nu, E, nu)
+    outer = hertz.point_contact(Q, D / 2, D / 2, rxo, ryo, E, nu, E, nu)
+    assert inner.p_max_Pa / 1e6 == pytest.approx(iso["contact_stress_MPa"], rel=0.01)
+    assert outer.p_max_Pa < inner.p_max_Pa  # the inner contact is the most heavily stressed
