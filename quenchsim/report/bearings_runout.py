@@ -59,80 +59,90 @@ def _others(peaks, keep: list, rel: float = 0.01) -> int:
                and (p.direction, round(abs(p.frequency_hz), 6)) not in kept)
 
 
+def _line_hz(f, fr: float, rel_hz: float, coeffs: tuple[int, int, int, int]) -> float:
+    """a f_rel + b f_r + c f_c + d f_b for coeffs (a, b, c, d)."""
+    a, b, c, d = coeffs
+    return a * rel_hz + b * fr + c * f.cage_hz + d * f.ball_spin_hz
+
+
+def _row_runs(model: str, base: dict[str, Any], extra: dict[str, Any]):
+    case = _case(base, model, **extra)
+    _, peaks, f = spectra_and_peaks(case, simulate(case))
+    return case, peaks, f
+
+
 def _table_2d() -> list[str]:
-    base = studies.BEARING_695
-    z, alpha = 8, math.radians(19.8)
-    cot = 1.0 / math.tan(alpha)
-    lines = ["| imperfection | order | direction | predicted | f predicted [Hz] | f found [Hz] | found as | "
-             "ratio published | ratio found | other lines > 1 % |", "|---|---|---|---|---|---|---|---|---|---|"]
+    """The sec. 2 table, n = 1, 2: (imperfection, order, direction, label, (a, b, c, d) of
+    a f_i + b f_r + c f_c + d f_b per line, published amplitude ratio)."""
+    z, cot = 8, 1.0 / math.tan(math.radians(19.8))
     rows = []
     for n in (1, 2):
-        rows += [("inner raceway", "inner", n * z - 1, "radial", f"{n * z} f_i - f_r", lambda f, c, n=n: n * z * f.inner_rel_cage_hz - c.speed_hz, 1.0),
-                 ("inner raceway", "inner", n * z + 1, "radial", f"{n * z} f_i + f_r", lambda f, c, n=n: n * z * f.inner_rel_cage_hz + c.speed_hz, 1.0),
-                 ("inner raceway", "inner", n * z, "axial", f"{n * z} f_i", lambda f, c, n=n: n * z * f.inner_rel_cage_hz, cot),
-                 ("outer raceway", "outer", n * z - 1, "radial", f"{n * z} f_c", lambda f, c, n=n: n * z * f.cage_hz, 1.0),
-                 ("outer raceway", "outer", n * z + 1, "radial", f"{n * z} f_c", lambda f, c, n=n: n * z * f.cage_hz, 1.0),
-                 ("outer raceway", "outer", n * z, "axial", f"{n * z} f_c", lambda f, c, n=n: n * z * f.cage_hz, cot)]
-    for part, key, order, direction, formula, freq, ratio in rows:
-        case = _case(base, "linear2d", waviness=[{"part": key, "order": order, "amplitude_um_pp": AMP_UM}])
-        _, peaks, f = spectra_and_peaks(case, simulate(case))
-        target = freq(f, case)
-        p = _find(peaks, direction, target, 0.3 / case.duration_s)
-        whirl = f" ({p.whirl})" if p is not None and p.whirl else ""
-        lines.append(f"| {part} | {order} | {direction} | {formula} | {target:.3f} | "
-                     f"{'-' if p is None else f'{abs(p.frequency_hz):.3f}'} | {'-' if p is None else p.source + whirl} | "
-                     f"{_fmt(ratio)} | {'-' if p is None else _fmt(p.amplitude_pp_m / (AMP_UM * 1e-6))} | "
-                     f"{_others(peaks, [p])} |")
-    # ball diameter variation (one ball) and ball waviness 2n
-    case = _case(base, "linear2d", ball_diameter_deviation=[{"ball": 0, "deviation_um": AMP_UM}])
-    _, peaks, f = spectra_and_peaks(case, simulate(case))
-    p = _find(peaks, "radial", f.cage_hz, 0.3 / case.duration_s)
-    axial = [q for q in peaks if q.direction == "axial"]
-    lines.append(f"| ball diameter (one ball) | - | radial | f_c | {f.cage_hz:.3f} | {abs(p.frequency_hz):.3f} | {p.source} | "
-                 f"{_fmt(4 / z)} | {_fmt(p.amplitude_pp_m / (AMP_UM * 1e-6))} | {_others(peaks, [p])} |")
-    lines.append(f"| ball diameter (one ball) | - | axial | none | - | {'none' if not axial else 'FOUND'} | - | - | - | - |")
+        nz = n * z
+        rows += [("inner raceway", "inner", nz - 1, "radial", f"{nz} f_i - f_r", [(nz, -1, 0, 0)], 1.0),
+                 ("inner raceway", "inner", nz + 1, "radial", f"{nz} f_i + f_r", [(nz, 1, 0, 0)], 1.0),
+                 ("inner raceway", "inner", nz, "axial", f"{nz} f_i", [(nz, 0, 0, 0)], cot),
+                 ("outer raceway", "outer", nz - 1, "radial", f"{nz} f_c", [(0, 0, nz, 0)], 1.0),
+                 ("outer raceway", "outer", nz + 1, "radial", f"{nz} f_c", [(0, 0, nz, 0)], 1.0),
+                 ("outer raceway", "outer", nz, "axial", f"{nz} f_c", [(0, 0, nz, 0)], cot)]
+    rows += [("ball diameter (one ball)", None, "-", "radial", "f_c", [(0, 0, 1, 0)], 4 / z),
+             ("ball diameter (one ball)", None, "-", "axial", "none", [], None)]
     for n in (1, 2):
-        case = _case(base, "linear2d", waviness=[{"part": "ball", "ball": 0, "order": 2 * n, "amplitude_um_pp": AMP_UM}])
-        _, peaks, f = spectra_and_peaks(case, simulate(case))
+        rows += [("ball waviness (one ball)", "ball", 2 * n, "radial", f"{2 * n} f_b -+ f_c",
+                  [(0, 0, -1, 2 * n), (0, 0, 1, 2 * n)], 4 / z),
+                 ("ball waviness (one ball)", "ball", 2 * n, "axial", f"{2 * n} f_b", [(0, 0, 0, 2 * n)], 2 / z * cot)]
+    lines = ["| imperfection | order | direction | predicted | f predicted [Hz] | f found [Hz] | found as | "
+             "ratio published | ratio found | other lines > 1 % |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for name, part, order, direction, formula, coeffs, ratio in rows:
+        if part is None:
+            extra = {"ball_diameter_deviation": [{"ball": 0, "deviation_um": AMP_UM}]}
+        else:
+            extra = {"waviness": [{"part": part, "order": order, "amplitude_um_pp": AMP_UM,
+                                   **({"ball": 0} if part == "ball" else {})}]}
+        case, peaks, f = _row_runs("linear2d", studies.BEARING_695, extra)
         tol = 0.3 / case.duration_s
-        lo = _find(peaks, "radial", 2 * n * f.ball_spin_hz - f.cage_hz, tol)
-        hi = _find(peaks, "radial", 2 * n * f.ball_spin_hz + f.cage_hz, tol)
-        ax = _find(peaks, "axial", 2 * n * f.ball_spin_hz, tol)
-        lines.append(f"| ball waviness (one ball) | {2 * n} | radial | {2 * n} f_b -+ f_c | "
-                     f"{2 * n * f.ball_spin_hz - f.cage_hz:.3f}, {2 * n * f.ball_spin_hz + f.cage_hz:.3f} | "
-                     f"{abs(lo.frequency_hz):.3f}, {abs(hi.frequency_hz):.3f} | {lo.source}, {hi.source} | {_fmt(4 / z)} (sum) | "
-                     f"{_fmt((lo.amplitude_pp_m + hi.amplitude_pp_m) / (AMP_UM * 1e-6))} | {_others(peaks, [lo, hi, ax])} |")
-        lines.append(f"| ball waviness (one ball) | {2 * n} | axial | {2 * n} f_b | {2 * n * f.ball_spin_hz:.3f} | "
-                     f"{abs(ax.frequency_hz):.3f} | {ax.source} | {_fmt(2 / z * cot)} | "
-                     f"{_fmt(ax.amplitude_pp_m / (AMP_UM * 1e-6))} | {_others(peaks, [lo, hi, ax])} |")
+        targets = [_line_hz(f, case.speed_hz, f.inner_rel_cage_hz, c) for c in coeffs]
+        found = [_find(peaks, direction, t, tol) for t in targets]
+        # lines the table lists for this imperfection in any direction (the sibling rows)
+        listed = [_find(peaks, d, _line_hz(f, case.speed_hz, f.inner_rel_cage_hz, c), tol)
+                  for nm, pt, od, d, _, cs, _ in rows if (nm, pt, od) == (name, part, order) for c in cs]
+        if not coeffs:
+            absent = not [p for p in peaks if p.direction == direction]
+            lines.append(f"| {name} | {order} | {direction} | none | - | {'none' if absent else 'FOUND'} | - | - | - | - |")
+            continue
+        ok = all(p is not None for p in found)
+        ratio_found = sum(p.amplitude_pp_m for p in found) / (AMP_UM * 1e-6) if ok else float("nan")
+        lines.append(
+            f"| {name} | {order} | {direction} | {formula} | {', '.join(f'{t:.3f}' for t in targets)} | "
+            f"{', '.join('MISSING' if p is None else f'{abs(p.frequency_hz):.3f}' for p in found)} | "
+            f"{', '.join('-' if p is None else p.source + (f' ({p.whirl})' if p.whirl else '') for p in found)} | "
+            f"{_fmt(ratio)}{' (sum)' if len(coeffs) > 1 else ''} | {_fmt(ratio_found)} | {_others(peaks, listed)} |")
     return lines
 
 
 def _table_3d() -> list[str]:
-    base = studies.STANDARD_3D
+    """The sec. 3 first-order table, n = 1, 2: lines in (x, y) and z as (a, b, c, d) of
+    a f_o + b f_r + c f_c + d f_b (f_o per ball; the table's ball-pass n f_i = nZ f_c, n f_o = nZ f_o)."""
     z = 8
     lines = ["| waviness on | order | published x, y | published z | x, y found [Hz] (as) | z found [Hz] (as) | "
              "other lines > 1 % |", "|---|---|---|---|---|---|---|"]
     for n in (1, 2):
-        specs = [("inner", n * z, "-", f"{n} f_i", [], lambda f, c, n=n: [n * f.ball_pass_inner_hz]),
-                 ("inner", n * z - 1, f"{n} f_i", "-", lambda f, c, n=n: [n * f.ball_pass_inner_hz], []),
-                 ("inner", n * z + 1, f"{n} f_i", "-", lambda f, c, n=n: [n * f.ball_pass_inner_hz], []),
-                 ("outer", n * z, "-", f"{n} f_o", [], lambda f, c, n=n: [n * f.ball_pass_outer_hz]),
-                 ("outer", n * z + 1, f"{n} f_o + f_r", "-", lambda f, c, n=n: [n * f.ball_pass_outer_hz + c.speed_hz], []),
-                 ("outer", n * z - 1, f"{n} f_o - f_r", "-", lambda f, c, n=n: [n * f.ball_pass_outer_hz - c.speed_hz], []),
+        nz = n * z
+        specs = [("inner", nz, "-", f"{n} f_i", [], [(0, 0, nz, 0)]),
+                 ("inner", nz - 1, f"{n} f_i", "-", [(0, 0, nz, 0)], []),
+                 ("inner", nz + 1, f"{n} f_i", "-", [(0, 0, nz, 0)], []),
+                 ("outer", nz, "-", f"{n} f_o", [], [(nz, 0, 0, 0)]),
+                 ("outer", nz + 1, f"{n} f_o + f_r", "-", [(nz, 1, 0, 0)], []),
+                 ("outer", nz - 1, f"{n} f_o - f_r", "-", [(nz, -1, 0, 0)], []),
                  ("ball", 2 * n, f"{2 * n} f_o -+ f_c (see note)", f"{2 * n} f_o (see note)",
-                  lambda f, c, n=n: [2 * n * f.ball_spin_hz - f.cage_hz, 2 * n * f.ball_spin_hz + f.cage_hz],
-                  lambda f, c, n=n: [2 * n * f.ball_spin_hz])]
+                  [(0, 0, -1, 2 * n), (0, 0, 1, 2 * n)], [(0, 0, 0, 2 * n)])]
         for part, order, pub_r, pub_z, radial, axial in specs:
-            w = {"part": part, "order": order, "amplitude_um_pp": AMP_UM}
-            if part == "ball":
-                w["ball"] = 0
-            case = _case(base, "hertz3d", waviness=[w])
-            _, peaks, f = spectra_and_peaks(case, simulate(case))
+            w = {"part": part, "order": order, "amplitude_um_pp": AMP_UM, **({"ball": 0} if part == "ball" else {})}
+            case, peaks, f = _row_runs("hertz3d", studies.STANDARD_3D, {"waviness": [w]})
             tol = 0.3 / case.duration_s
-            found_r = [_find(peaks, "x", fr, tol) for fr in (radial(f, case) if radial else [])]
-            found_z = [_find(peaks, "axial", fz, tol) for fz in (axial(f, case) if axial else [])]
-            keep = found_z + [_find(peaks, "radial", fr, tol) for fr in (radial(f, case) if radial else [])]
+            rel = f.outer_rel_cage_hz
+            found_r = [_find(peaks, "x", _line_hz(f, case.speed_hz, rel, c), tol) for c in radial]
+            found_z = [_find(peaks, "axial", _line_hz(f, case.speed_hz, rel, c), tol) for c in axial]
+            keep = found_z + [_find(peaks, "radial", _line_hz(f, case.speed_hz, rel, c), tol) for c in radial]
 
             def show(found):
                 if not found:
@@ -202,8 +212,8 @@ def _benchmark(reports_dir: pathlib.Path) -> tuple[list[str], list[pathlib.Path]
              f"| solve + spectra + peak identification + NRRO, median [s] | {np.median(total_times):.4f} |",
              f"| min / max solve [s] | {min(solve_times):.4f} / {max(solve_times):.4f} |",
              "| paper (850 MHz PC) [s] | ~5 |",
-             f"| radial run-out / NRRO [nm p-p] | {result.runout_pp_m['radial'] * 1e9:.2f} / {result.nrro_pp_m['radial'] * 1e9:.2f} |",
-             f"| axial run-out / NRRO [nm p-p] | {result.runout_pp_m['axial'] * 1e9:.2f} / {result.nrro_pp_m['axial'] * 1e9:.2f} |",
+             *(f"| {d} run-out / NRRO [nm p-p] | {result.runout_pp_m[d] * 1e9:.2f} / {result.nrro_pp_m[d] * 1e9:.2f} |"
+               for d in ("radial", "axial")),
              f"| max orbit difference Hertz vs linear model [m] | {diff:.2e} |",
              f"| machine | {platform.machine()}, Python {platform.python_version()}, numpy {np.__version__} |",
              "", "Lines (whirl 'radial' and 'axial'):", "",
@@ -418,10 +428,11 @@ Note on the ball row: the reference prints 2n f_o -+ f_c (x, y) and 2n f_o (z). 
 waviness order 2n changes its diameter at 2n f_b, and the lines found are at 2n f_b -+ f_c and
 2n f_b, as the reference's own sec. 2 table states for this mechanism (and as an independent NRRO
 analysis of HDD spindle bearings reports: dominant radial lines f_c and 2 f_b +- f_c, axial 2 f_b;
-Y. C. Kim, S. K. Choi, K. C. Yoon, KSNVE conference 2002,
-https://koreascience.kr/article/CFKO200225121648695.page). For this bearing 2 f_b = {kin['2fb']:.1f} Hz and
-2 f_o = {kin['2fo']:.1f} Hz (ball-pass) differ by {kin['diff_pct']:.1f} %, {kin['diff_bins']:.0f} FFT bins, so they are not the
-same line; we read the printed f_o in that row as a symbol slip and test against 2n f_b.
+Y. C. Kim, S. K. Choi, K. C. Yoon, "NRRO analysis of HDD spindle ball bearings using the measured
+geometric imperfection", 2002, https://koreascience.kr/article/CFKO200225121648695.page).
+For this bearing 2 f_b = {kin['2fb']:.1f} Hz and 2 f_o = {kin['2fo']:.1f} Hz (ball-pass) differ by
+{kin['diff_pct']:.1f} %, {kin['diff_bins']:.0f} FFT bins, so they are not the same line; we read the printed
+f_o in that row as a symbol slip and test against 2n f_b.
 
 ## 4. Linear limit and second-order terms (3-D vs 2-D, standard model, outer rotating)
 
@@ -430,8 +441,8 @@ Inner 9 + outer 7 lobes (first-order lines n f_i and n f_o - f_r) plus inner 4 +
 of the 3-D model equal the linear model's (columns 2-3; second-order products of these orders do
 not fall on the first-order frequencies), while the total radial NRRO of the 3-D model exceeds the
 linear one by its nonlinear lines, a difference that grows with the amplitude (last two columns:
-{excess[0][1]:.2g} % at {excess[0][0]} um, {excess[-1][1]:.2g} % at {excess[-1][0]} um). Inner 4 lobes alone (= Z/2: j = 2 of the reference's W = nZ/j)
-gives an axial line at 8 f_c only through the Hertz nonlinearity; fitted log-log slope of its
+{excess[0][1]:.2g} % at {excess[0][0]} um, {excess[-1][1]:.2g} % at {excess[-1][0]} um). Inner 4 lobes alone
+(= Z/2: j = 2 of the reference's W = nZ/j) gives an axial line at 8 f_c only through the Hertz nonlinearity; fitted log-log slope of its
 amplitude against the waviness amplitude: **{slope:.4f}** (2 = grows with amplitude squared).
 
 {chr(10).join(limit)}

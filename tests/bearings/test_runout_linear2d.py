@@ -188,3 +188,23 @@ def test_excitation_of_one_inner_waviness_by_hand():
     np.testing.assert_allclose(exc.ball_angle_rad, theta, atol=1e-12)
     np.testing.assert_allclose(exc.race_m, 0.1e-6 * np.cos(5 * (theta - 2 * np.pi * fr * t) - math.radians(30.0)),
                                atol=1e-18)
+
+
+def test_ring_equilibrium_within_the_published_tolerance():
+    """Reference sec. 2: |sum_j k delta_j| / k <= 1e-12 m for the free ring at every step (here with
+    raceway and ball waviness, a larger ball and a displaced ball at once)."""
+    data = copy.deepcopy(BASE)
+    data["bearing"]["ball_spring_N_per_m"] = 2.0e7
+    data["waviness"] = [{"part": "inner", "order": 9, "amplitude_um_pp": 0.2}, {"part": "outer", "order": 5, "amplitude_um_pp": 0.1},
+                        {"part": "ball", "ball": 3, "order": 2, "amplitude_um_pp": 0.1}]
+    data["ball_diameter_deviation"] = [{"ball": 1, "deviation_um": 0.1}]
+    data["ball_position_error"] = [{"ball": 5, "angle_deg": 1.5}]
+    case = parse_case(data)
+    tr = simulate(case)
+    th = excitation(case).ball_angle_rad
+    k = 0.5 * 2.0e7
+    radial = np.hypot((tr.load_N * np.cos(th)).sum(axis=1), (tr.load_N * np.sin(th)).sum(axis=1)) * math.cos(ALPHA)
+    axial = tr.load_N.sum(axis=1) * math.sin(ALPHA) - case.axial_load_N
+    assert np.max(radial) / k < 1e-12
+    assert np.max(np.abs(axial)) / k < 1e-12
+    assert tr.load_N.min() > 0.0

@@ -9,7 +9,8 @@ centre (x, y, z) is the unknown. Elastic approach of ball j along its contact li
 
 (raceway waviness projected on the contact line, the ball's diameter deviation along it; d_pl the
 preload approach, here part of the axial approach z; sigma = -1 for the outer ring free as in the
-reference, whose z has the opposite sign; see :mod:`quenchsim.bearings.runout.equilibrium`), Hertz law Q_j = K_n delta_j^1.5 with the exact
+reference, whose z has the opposite sign; see :mod:`quenchsim.bearings.runout.equilibrium`), Hertz
+law Q_j = K_n delta_j^1.5 with the exact
 elliptic-integral constant K_n = K_i K_o / (K_i^(2/3) + K_o^(2/3))^1.5 of
 :func:`quenchsim.bearings.hertz.ball_race_stiffness`, and force balance
 sum Q_j cos a cos th_j = sum Q_j cos a sin th_j = 0, sum Q_j sin a = F_a, solved at every step by
