@@ -35,7 +35,6 @@ from dataclasses import dataclass
 from importlib import resources
 from typing import Any
 
-import numpy as np
 from scipy.optimize import brentq
 from scipy.special import ellipe, ellipkm1
 
@@ -186,13 +185,6 @@ def point_contact_stiffness(rx1_m: float, ry1_m: float, rx2_m: float, ry2_m: flo
                             E1_Pa: float, nu1: float, E2_Pa: float, nu2: float) -> float:
     """K_n (N/m^1.5) with Q = K_n delta^1.5: K_n = pi k E' sqrt(2 E(m) R / (9 K(m)^3))."""
     return _stiffness(_shape(rx1_m, ry1_m, rx2_m, ry2_m, E1_Pa, nu1, E2_Pa, nu2))
-
-
-def point_contact_load_N(approach_m: np.ndarray | float, stiffness_N_m15: float) -> np.ndarray | float:
-    """Q = K_n max(delta, 0)^1.5, vectorised over approaches (no tension in a contact)."""
-    d = np.maximum(np.asarray(approach_m, dtype=float), 0.0)
-    q = stiffness_N_m15 * d**1.5
-    return float(q) if q.ndim == 0 else q
 
 
 def line_contact(load_N: float, length_m: float, r1_m: float, r2_m: float,

@@ -14,7 +14,7 @@ from quenchsim.errors import InputError
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--grease", required=True, help="thickener: urea | lithium")
+    parser.add_argument("--grease", required=True, help=f"thickener: {' | '.join(grease.grease_types())}")
     parser.add_argument("--base-oil", required=True,
                         help="mineral, pao, ester, ether, diester, silicone or a mixture joined by '+'")
     where = parser.add_mutually_exclusive_group(required=True)
