@@ -247,6 +247,9 @@ def _grease_page(reports_dir: pathlib.Path) -> list[pathlib.Path]:
                        / (L / ts["L50_h"][1])))
         for T, L in zip(ts["temperature_C"], ts["L50_h"]))
 
+    a_speed = grease.grease_data()["grease"]["urea"]["a_speed"]
+    explaining_rpm = ts["speed_rpm"] + (sum(offsets) / 3) / (-a_speed * dm)
+
     fig, axes = plt.subplots(1, 3, figsize=(13, 3.8))
     for ax, (key, var, s, xs, Ls) in zip(axes, series):
         grid = np.linspace(min(xs) * 0.9, max(xs) * 1.1, 80)
@@ -301,7 +304,8 @@ def _grease_page(reports_dir: pathlib.Path) -> list[pathlib.Path]:
         f"  {trend_error:.3f} in log10), but the level is a uniform factor {10**-max(offsets):.2f}-{10**-min(offsets):.2f}"
         " below the data. The series' speed and load are not stated",
         "  in the reference; at the assumed base condition the offset exceeds the repeat scatter. A different,",
-        "  unstated condition (e.g. ~7700 rpm, or another base oil) would explain a uniform offset. NOT",
+        f"  unstated condition (e.g. {explaining_rpm:.0f} rpm instead of 10000, or a base oil with K1 higher by"
+        f" {-sum(offsets) / 3:.2f}) would explain a uniform offset. NOT",
         "  reproduced within the scatter in absolute terms -- said plainly.",
         "* The published validity limit dmN <= 400,000 excludes two of the fitted speed points (dmN 503,000 and",
         "  670,000); the module keeps the published limit and warns there.",
