@@ -78,6 +78,14 @@ def test_bad_waviness(row, field):
     assert err.value.field == field
 
 
+def test_linear_spring_only_for_the_linear_model():
+    data = copy.deepcopy(BASE)
+    data["model"] = "hertz3d"
+    data["bearing"]["ball_spring_N_per_m"] = 1e7
+    with pytest.raises(InputError, match="only for model = 'linear2d'"):
+        parse_case(data)
+
+
 def test_clearance_inputs():
     data = _with(("bearing", "contact_angle_deg"), None)
     data["bearing"]["radial_clearance_um"] = -2.0

@@ -172,6 +172,8 @@ def parse_case(data: dict[str, Any]) -> RunoutCase:
     if "ball_spring_N_per_m" in b:
         k_ball = _number(b, "ball_spring_N_per_m", "bearing")
         require(k_ball > 0.0, "bearing.ball_spring_N_per_m", k_ball, "must be > 0")
+        require(model == "linear2d", "bearing.ball_spring_N_per_m", k_ball,
+                "only for model = 'linear2d' (hertz3d takes its stiffness from the Hertz contacts)")
 
     op = _table(data, "operation", _OPERATION_KEYS)
     rotating = op.get("rotating", "inner")

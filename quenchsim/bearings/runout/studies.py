@@ -56,6 +56,8 @@ def _with(base: dict[str, Any], model: str, **changes: Any) -> dict[str, Any]:
             data[key] = value
     if "contact_angle_deg" in changes:
         data["bearing"].pop("radial_clearance_um", None)
+    if model != "linear2d":
+        data["bearing"].pop("ball_spring_N_per_m", None)
     return data
 
 
