@@ -403,6 +403,8 @@ def friction_torque(pulse_times_s: np.ndarray, inertia_kg_m2: float, method: Met
     require(math.isfinite(inertia_kg_m2) and inertia_kg_m2 > 0.0, "inertia_kg_m2", inertia_kg_m2,
             "must be a positive inertia")
     d = deceleration(pulse_times_s, method, alpha_percent)
+    require(d.decel_rad_s2 > 0.0, "pulses", f"deceleration {d.decel_rad_s2:.4g} rad/s^2 ({d.method})",
+            "the speed must decrease during a free run")
     return FreeRunResult(method=d.method, torque_Nm=inertia_kg_m2 * d.decel_rad_s2, omega0_rad_s=d.omega0_rad_s,
                          decel_rad_s2=d.decel_rad_s2, n_used=d.n_used, inertia_kg_m2=inertia_kg_m2, detail=d)
 

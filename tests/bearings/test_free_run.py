@@ -143,5 +143,7 @@ def test_bad_inputs(tmp_path):
         fr.friction_torque(t, 1e-3, "spline")
     with pytest.raises(InputError, match="rotor_inertia_kg_m2"):
         fr.equivalent_inertia(-1.0, 0.0, 0.0, kin.bearing("6204").geometry)
+    with pytest.raises(InputError, match="must decrease"):
+        fr.friction_torque(t[-1] - t[::-1], 1e-3, "t-omega")  # the record played backwards speeds up
     with pytest.raises(InputError, match="file not found"):
         fr.read_pulses(tmp_path / "missing.csv")
