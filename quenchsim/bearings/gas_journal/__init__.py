@@ -1,0 +1,10 @@
+"""Gas journal bearings, plain and herringbone-grooved: compressible Reynolds equation in divergence
+(finite-volume) form on a skewed grid, FAS multigrid, static characteristics, orbits and stability.
+
+Reference: ../shared/reference/bearing_modules.md, section 1 (ASME J. Tribology 121 (1999) 148).
+"""
+
+from quenchsim.bearings.gas_journal.geometry import Bearing, Grooves, Grid, grid_for_level
+from quenchsim.bearings.gas_journal.static import StaticResult, equilibrium, static_characteristics
+
+__all__ = ["Bearing", "Grooves", "Grid", "grid_for_level", "StaticResult", "equilibrium", "static_characteristics"]
