@@ -203,5 +203,6 @@ def test_balls_that_unload_carry_nothing_and_balance_holds():
     assert (tr.load_N == 0.0).any(axis=1).mean() > 0.3   # a ball unloaded in a good part of the steps
     radial = np.hypot((tr.load_N * np.cos(th)).sum(axis=1), (tr.load_N * np.sin(th)).sum(axis=1)) * math.cos(a)
     axial = tr.load_N.sum(axis=1) * math.sin(a)
+    # Newton stops on a 1e-15 m step: force residual ~ contact stiffness (~5e6 N/m) x 1e-15 m ~ 5e-9 N
     assert radial.max() < 1e-9 * case.axial_load_N
-    np.testing.assert_allclose(axial, case.axial_load_N, rtol=1e-10)
+    np.testing.assert_allclose(axial, case.axial_load_N, rtol=1e-9)
