@@ -10,7 +10,7 @@ x_o, y_o], v = dq/dt: 6 N + 10 first-order ODEs. For a body of mass m at rho wit
                       - 2 omega z x u                              (Coriolis)
                       - omega_dot z x rho ] + m g'                 (Euler; gravity rotated into the frame)
     I dOmega/dt = M - I omega_dot                                  (Omega relative to the frame)
-Contacts (vectorised over the rollers): roller-pin and roller-outer race (Palmgren line contact with
+Contacts (one compiled pass over the rollers): roller-pin and roller-outer race (Palmgren line contact with
 damping, EHL traction), roller-pocket (flat pocket faces at +-w/2 from the pocket's radial line,
 Palmgren contact over the pocket contact length, Coulomb friction), cage land-outer ring (short
 journal bearing with squeeze film down to the smallest film h_min, solid land contact beyond it), cage unbalance.
@@ -90,8 +90,9 @@ def n_states(n_rollers: int) -> int:
 
 @njit(cache=True)
 def _traction(q, ue, slide, r_eff, p):
-    w = q / p.l_roller
-    ue_f = np.maximum(ue, p.u_floor)
+    """Signed traction coefficient of one roller-race contact (film from Pan-Hamrock + thermal factor)."""
+    w = q / p.l_roller[0]
+    ue_f = max(ue, p.u_floor)
     s = slide / ue_f
     ph = hertz_line_max_pressure(w, r_eff, p.e_star)
     phi = thermal_reduction_factor(ph, p.e_star, thermal_loading(p.beta_t, p.eta0, ue_f, p.k_oil), s)
@@ -102,7 +103,7 @@ def _traction(q, ue, slide, r_eff, p):
 
 @njit(cache=True)
 def _pocket_face(sgn, q, dx, dy, erx, ery, etx, ety, vxr, vyr, wr, vxc, vyc, wc, p):
-    """Force (fx, fy) and moment on the rollers and moment on the cage of one pocket face (sgn = +-1)."""
+    """Force (fx, fy) and moment on the roller and moment on the cage of one pocket face (sgn = +-1)."""
     r = p.r_roller
     ax = sgn * r * etx  # contact point relative to roller centre
     ay = sgn * r * ety
@@ -116,91 +117,125 @@ def _pocket_face(sgn, q, dx, dy, erx, ery, etx, ety, vxr, vyr, wr, vxc, vyc, wc,
     f = coulomb_friction(q, vs, p.mu_pocket, p.v_reg)
     fx = -sgn * q * etx - f * erx
     fy = -sgn * q * ety - f * ery
-    m_roller = ax * fy - ay * fx
-    m_cage = -(cx * fy - cy * fx)
-    return fx, fy, m_roller, m_cage
+    return fx, fy, ax * fy - ay * fx, -(cx * fy - cy * fx)
 
 
 @njit(cache=True)
 def evaluate(t, y, p):
-    """Accelerations (3N + 5,) plus per-roller pocket force, pin and outer-race loads."""
+    """Accelerations (3N + 5,) plus per-roller pocket force, pin and outer-race loads.
+
+    One pass over the rollers with scalar contact laws (no temporary arrays: the right-hand side is
+    called ~10^5 times per crank revolution).
+    """
     n = p.n
     nq = 3 * n + 5
-    xr = y[0:n]
-    yr = y[n:2 * n]
     xc, yc, psi = y[3 * n], y[3 * n + 1], y[3 * n + 2]
     xo, yo = y[3 * n + 3], y[3 * n + 4]
-    v = y[nq:]
-    vxr = v[0:n]
-    vyr = v[n:2 * n]
-    wr = v[2 * n:3 * n]
-    vxc, vyc, wc = v[3 * n], v[3 * n + 1], v[3 * n + 2]
-    vxo, vyo = v[3 * n + 3], v[3 * n + 4]
+    vxc, vyc, wc = y[nq + 3 * n], y[nq + 3 * n + 1], y[nq + 3 * n + 2]
+    vxo, vyo = y[nq + 3 * n + 3], y[nq + 3 * n + 4]
     r = p.r_roller
-    m_r = np.full(n, p.m_roller)
+    l_r = p.l_roller[0]
+    l_p = p.l_pocket[0]
+    m_pair = p.m_roller * p.m_cage / (p.m_roller + p.m_cage)
 
     theta = p.omega * t
     th = theta % (2.0 * np.pi)
     fx_ext = np.interp(th, p.table_theta, p.table_fx)
     fy_ext = np.interp(th, p.table_theta, p.table_fy)
     omega_o = np.interp(th, p.table_theta, p.table_omega_o)
+    w = p.omega
+    wd = p.omega_dot
+    # frame (non-inertial) terms + gravity per unit mass
+    ax0 = p.crank_radius * w * w + p.gravity_x * np.cos(theta) + p.gravity_y * np.sin(theta)
+    ay0 = -p.crank_radius * wd - p.gravity_x * np.sin(theta) + p.gravity_y * np.cos(theta)
 
-    # roller - pin (inner race, fixed in the frame)
-    d = np.sqrt(xr * xr + yr * yr)
-    nx = xr / d
-    ny = yr / d
-    tx = -ny
-    ty = nx
-    q_in = damped_contact_force(p.r_in + r - d, -(vxr * nx + vyr * ny), p.l_roller, p.e_star, m_r,
-                                p.damping_ratio)
-    ut = vxr * tx + vyr * ty
-    mu = _traction(q_in, 0.5 * np.abs(r * wr + ut), ut - r * wr, p.r_eff_in, p)
-    fxr = q_in * nx - mu * q_in * tx
-    fyr = q_in * ny - mu * q_in * ty
-    mr = r * mu * q_in
+    acc = np.empty(nq)
+    pocket = np.empty(n)
+    q_in_all = np.empty(n)
+    q_out_all = np.empty(n)
+    fxc = 0.0
+    fyc = 0.0
+    mc = 0.0
+    fxo = 0.0
+    fyo = 0.0
+    for j in range(n):
+        xr, yr = y[j], y[n + j]
+        vxr, vyr, wr = y[nq + j], y[nq + n + j], y[nq + 2 * n + j]
 
-    # roller - outer race
-    sx = xr - xo
-    sy = yr - yo
-    d = np.sqrt(sx * sx + sy * sy)
-    nx = sx / d
-    ny = sy / d
-    tx = -ny
-    ty = nx
-    q_out = damped_contact_force(d + r - p.r_out, (vxr - vxo) * nx + (vyr - vyo) * ny, p.l_roller, p.e_star,
-                                 m_r, p.damping_ratio)
-    ut_r = vxr * tx + vyr * ty
-    ut_o = vxo * tx + vyo * ty + omega_o * p.r_out
-    mu = _traction(q_out, 0.5 * np.abs(r * wr + ut_o - ut_r), ut_r + r * wr - ut_o, p.r_eff_out, p)
-    fxr -= q_out * nx + mu * q_out * tx
-    fyr -= q_out * ny + mu * q_out * ty
-    mr -= r * mu * q_out
-    fxo = np.sum(q_out * nx + mu * q_out * tx)
-    fyo = np.sum(q_out * ny + mu * q_out * ty)
+        # roller - pin (inner race, fixed in the frame)
+        d = np.sqrt(xr * xr + yr * yr)
+        nx = xr / d
+        ny = yr / d
+        tx = -ny
+        ty = nx
+        q_in = damped_contact_force(p.r_in + r - d, -(vxr * nx + vyr * ny), l_r, p.e_star, p.m_roller,
+                                    p.damping_ratio)
+        ut = vxr * tx + vyr * ty
+        mu = _traction(q_in, 0.5 * abs(r * wr + ut), ut - r * wr, p.r_eff_in[j], p) if q_in > 0.0 else 0.0
+        fxr = q_in * nx - mu * q_in * tx
+        fyr = q_in * ny - mu * q_in * ty
+        mr = r * mu * q_in
 
-    # roller - cage pocket
-    ang = psi + p.pocket_angles
-    erx = np.cos(ang)
-    ery = np.sin(ang)
-    etx = -ery
-    ety = erx
-    dx = xr - xc
-    dy = yr - yc
-    s = dx * etx + dy * ety
-    a = dx * erx + dy * ery
-    sdot = (vxr - vxc) * etx + (vyr - vyc) * ety - wc * a
-    m_pair = m_r * p.m_cage / (m_r + p.m_cage)
-    q_lead = damped_contact_force(s + r - p.pocket_half_width, sdot, p.l_pocket, p.e_star, m_pair, p.damping_ratio)
-    q_trail = damped_contact_force(-s + r - p.pocket_half_width, -sdot, p.l_pocket, p.e_star, m_pair,
-                                   p.damping_ratio)
-    fx1, fy1, mr1, mc1 = _pocket_face(1.0, q_lead, dx, dy, erx, ery, etx, ety, vxr, vyr, wr, vxc, vyc, wc, p)
-    fx2, fy2, mr2, mc2 = _pocket_face(-1.0, q_trail, dx, dy, erx, ery, etx, ety, vxr, vyr, wr, vxc, vyc, wc, p)
-    fxr += fx1 + fx2
-    fyr += fy1 + fy2
-    mr += mr1 + mr2
-    fxc = -np.sum(fx1 + fx2)
-    fyc = -np.sum(fy1 + fy2)
-    mc = np.sum(mc1 + mc2)
+        # roller - outer race
+        sx = xr - xo
+        sy = yr - yo
+        d = np.sqrt(sx * sx + sy * sy)
+        nx = sx / d
+        ny = sy / d
+        tx = -ny
+        ty = nx
+        q_out = damped_contact_force(d + r - p.r_out, (vxr - vxo) * nx + (vyr - vyo) * ny, l_r, p.e_star,
+                                     p.m_roller, p.damping_ratio)
+        if q_out > 0.0:
+            ut_r = vxr * tx + vyr * ty
+            ut_o = vxo * tx + vyo * ty + omega_o * p.r_out
+            mu = _traction(q_out, 0.5 * abs(r * wr + ut_o - ut_r), ut_r + r * wr - ut_o, p.r_eff_out[j], p)
+            fx = q_out * nx + mu * q_out * tx
+            fy = q_out * ny + mu * q_out * ty
+            fxr -= fx
+            fyr -= fy
+            mr -= r * mu * q_out
+            fxo += fx
+            fyo += fy
+
+        # roller - cage pocket (flat faces at +-w/2 from the pocket's radial line)
+        ang = psi + p.pocket_angles[j]
+        erx = np.cos(ang)
+        ery = np.sin(ang)
+        etx = -ery
+        ety = erx
+        dx = xr - xc
+        dy = yr - yc
+        s = dx * etx + dy * ety
+        a = dx * erx + dy * ery
+        sdot = (vxr - vxc) * etx + (vyr - vyc) * ety - wc * a
+        q_lead = damped_contact_force(s + r - p.pocket_half_width, sdot, l_p, p.e_star, m_pair, p.damping_ratio)
+        q_trail = damped_contact_force(-s + r - p.pocket_half_width, -sdot, l_p, p.e_star, m_pair,
+                                       p.damping_ratio)
+        if q_lead > 0.0:
+            fx, fy, m1, m2 = _pocket_face(1.0, q_lead, dx, dy, erx, ery, etx, ety, vxr, vyr, wr, vxc, vyc, wc, p)
+            fxr += fx
+            fyr += fy
+            mr += m1
+            fxc -= fx
+            fyc -= fy
+            mc += m2
+        if q_trail > 0.0:
+            fx, fy, m1, m2 = _pocket_face(-1.0, q_trail, dx, dy, erx, ery, etx, ety, vxr, vyr, wr, vxc, vyc, wc,
+                                          p)
+            fxr += fx
+            fyr += fy
+            mr += m1
+            fxc -= fx
+            fyc -= fy
+            mc += m2
+
+        acc[j] = fxr / p.m_roller + ax0 + w * w * xr + 2.0 * w * vyr + wd * yr
+        acc[n + j] = fyr / p.m_roller + ay0 + w * w * yr - 2.0 * w * vxr - wd * xr
+        acc[2 * n + j] = mr / p.i_roller - wd
+        pocket[j] = q_lead + q_trail
+        q_in_all[j] = q_in
+        q_out_all[j] = q_out
 
     # cage land - outer ring: short journal bearing film (+ solid contact when the film is below h_min)
     ex = xc - xo
@@ -217,11 +252,10 @@ def evaluate(t, y, p):
     if e > gap_limit:
         ux = ex / e
         uy = ey / e
-        rate = np.array([(vxc - vxo) * ux + (vyc - vyo) * uy])
-        qg = damped_contact_force(np.array([e - gap_limit]), rate, p.l_land, p.e_star,
-                                  np.array([p.m_cage]), p.damping_ratio)[0]
+        rate = (vxc - vxo) * ux + (vyc - vyo) * uy
+        qg = damped_contact_force(e - gap_limit, rate, p.l_land[0], p.e_star, p.m_cage, p.damping_ratio)
         slip = (vxc - vxo) * (-uy) + (vyc - vyo) * ux + wc * p.land_radius - omega_o * (p.land_radius + p.guide_clearance)
-        fg = coulomb_friction(np.array([qg]), np.array([slip]), p.mu_guide, p.v_reg)[0]
+        fg = coulomb_friction(qg, slip, p.mu_guide, p.v_reg)
         fxc += -qg * ux + fg * uy
         fyc += -qg * uy - fg * ux
         mc -= fg * p.land_radius
@@ -229,7 +263,7 @@ def evaluate(t, y, p):
         fyo += qg * uy + fg * ux
 
     # cage unbalance (centrifugal force of the unbalance at the absolute cage speed)
-    w_abs = p.omega + wc
+    w_abs = w + wc
     fxc += p.unbalance * w_abs * w_abs * np.cos(psi)
     fyc += p.unbalance * w_abs * w_abs * np.sin(psi)
 
@@ -237,22 +271,12 @@ def evaluate(t, y, p):
     fxo += fx_ext
     fyo += fy_ext
 
-    # frame (non-inertial) terms + gravity per unit mass
-    w = p.omega
-    wd = p.omega_dot
-    ax0 = p.crank_radius * w * w + p.gravity_x * np.cos(theta) + p.gravity_y * np.sin(theta)
-    ay0 = -p.crank_radius * wd - p.gravity_x * np.sin(theta) + p.gravity_y * np.cos(theta)
-
-    acc = np.empty(nq)
-    acc[0:n] = fxr / p.m_roller + ax0 + w * w * xr + 2.0 * w * vyr + wd * yr
-    acc[n:2 * n] = fyr / p.m_roller + ay0 + w * w * yr - 2.0 * w * vxr - wd * xr
-    acc[2 * n:3 * n] = mr / p.i_roller - wd
     acc[3 * n] = fxc / p.m_cage + ax0 + w * w * xc + 2.0 * w * vyc + wd * yc
     acc[3 * n + 1] = fyc / p.m_cage + ay0 + w * w * yc - 2.0 * w * vxc - wd * xc
     acc[3 * n + 2] = mc / p.i_cage - wd
     acc[3 * n + 3] = fxo / p.m_ring + ax0 + w * w * xo + 2.0 * w * vyo + wd * yo
     acc[3 * n + 4] = fyo / p.m_ring + ay0 + w * w * yo - 2.0 * w * vxo - wd * xo
-    return acc, q_lead + q_trail, q_in, q_out
+    return acc, pocket, q_in_all, q_out_all
 
 
 @njit(cache=True)
