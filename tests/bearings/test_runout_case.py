@@ -145,3 +145,11 @@ def test_cli_bad_input_exit_2(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "bearing.balls = 0" in err[0]
     assert main(["bearings", "runout", str(tmp_path / "missing.toml"), "--json"]) == 2
+
+
+@pytest.mark.parametrize("path", sorted(CASES.glob("runout_*.toml")), ids=lambda p: p.name)
+def test_example_cases_run(path):
+    from quenchsim.bearings.runout import load_case, run
+
+    result = run(load_case(path))
+    assert result.peaks and all(p.source != "unmatched" for p in result.peaks)
