@@ -171,3 +171,21 @@ def test_cooling_rate_at_700_recorded_once():
     assert np.isnan(s.cooling_rate_700_C_s[0]) and s.cooling_rate_700_C_s[1] == pytest.approx(75.0)
     s = advance(s, kin, np.array([720.0, 690.0]), np.array([680.0, 600.0]), 4.0)
     np.testing.assert_allclose(s.cooling_rate_700_C_s, [10.0, 75.0])
+
+
+def test_li_model_reproduces_published_4140_critical_rate():
+    """Li et al. 1998 Table II: AISI 4140 (G = 8) needs 24.8 C/s for a fully martensitic structure (bainite
+    limited), V = int_Ms^Bs dT / tau_1%(T) (their eq. 30). Built through the material-file loader."""
+    comp = {"C": 0.38, "Mn": 0.81, "Si": 0.28, "Ni": 0.11, "Cr": 0.98, "Mo": 0.22}
+    material = copy.deepcopy(load_material("SUJ2"))
+    material["name"] = "AISI4140"
+    material["composition"] = {"source": "Li 1998 Table I", **comp}
+    material["austenitisation"]["dissolved_wt"] = {el: [w, w] for el, w in comp.items()}
+    material["austenitisation"]["grain_size_ASTM"] = 8
+    material["kinetics"]["composition"] = "dissolved"
+    material["kinetics"]["martensite"]["Ms_formula"] = {  # Kung-Rayment modified Andrews (Li eq. 25)
+        "const": 539, "C": -423, "Mn": -30.4, "Ni": -17.7, "Cr": -12.1, "Mo": -7.5, "Co": 10, "Si": -7.5}
+    kin = load_kinetics(material, 845.0)
+    bainite = kin.reactions["bainite"]
+    V, _ = quad(lambda T: 1.0 / float(bainite.isothermal_time_s(0.01, T)), kin.Ms_C, bainite.T_upper_C, limit=200)
+    assert V == pytest.approx(24.8, rel=0.05)

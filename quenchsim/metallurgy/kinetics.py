@@ -112,7 +112,7 @@ class Reaction:
         T = np.asarray(T_C, dtype=float)
         p = self.params
         if self.model == "li1998":
-            return np.full_like(T, p["n"])
+            return np.asarray(p["n"])  # constant (isokinetic): a scalar broadcasts
         if self.model == "jmak_polynomial":
             return np.polynomial.polynomial.polyval(T, p["n"])
         return np.interp(T, p["T_C"], p["n"])

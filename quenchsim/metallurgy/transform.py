@@ -1,8 +1,8 @@
 """Phase state of material points and its update over one time step (JMAK + additivity, Koistinen-Marburger).
 
 Per time step the temperature of each point is taken linear in time between T_old and T_new; the
-step is split into m equal sub-steps with |dT| <= ``Kinetics.substep_K`` (m is common to all points,
-so everything stays vectorised over the points).
+step of each point is split into m_i equal sub-steps with |dT| <= ``Kinetics.substep_K`` (the loop runs
+over sub-step indices, each vectorised over the points that still need it).
 
 Diffusional reactions (Scheil additivity): the normalised JMAK progress xi_i of reaction i obeys,
 along any T(t), q_i = -ln(1 - xi_i) = I_i^{n}, I_i = int dt / tau_i(T(t)) (the additivity integral);
@@ -65,50 +65,75 @@ def initial_state(shape: tuple[int, ...], kin: Kinetics) -> PhaseState:
                       T_min_C=np.full(shape, kin.T_aust_C), cooling_rate_700_C_s=np.full(shape, np.nan))
 
 
+def _diffusional_increments(kin: Kinetics, q: dict[str, np.ndarray], Ta: np.ndarray, Tb: np.ndarray,
+                            h: np.ndarray) -> dict[str, np.ndarray]:
+    """Increase dq_i of q_i = -ln(1 - xi_i) of each reaction over sub-steps [Ta, Tb] of length h (updates q in place).
+
+    Only points whose sub-step reaches below the reaction's upper temperature are evaluated.
+    """
+    dq = {}
+    for r, reaction in kin.reactions.items():
+        cold = np.minimum(Ta, Tb) < reaction.T_upper_C
+        d = np.zeros_like(Ta)
+        if cold.any():
+            sel = slice(None) if cold.all() else np.flatnonzero(cold)
+            ta, tb, hs, qs = Ta[sel], Tb[sel], h[sel], q[r][sel]
+            dI = 0.5 * hs * (reaction.inverse_tau(ta + (tb - ta) * _GAUSS[0])
+                             + reaction.inverse_tau(ta + (tb - ta) * _GAUSS[1]))
+            n = reaction.exponent(0.5 * (ta + tb))
+            q_new = np.minimum((qs ** (1.0 / n) + dI) ** n, Q_MAX)
+            d[sel] = q_new - qs
+            q[r][sel] = q_new
+        dq[r] = d
+    return dq
+
+
 def advance(state: PhaseState, kin: Kinetics, T_old_C: np.ndarray, T_new_C: np.ndarray, dt_s: float) -> PhaseState:
-    """The state after a step of dt_s during which T goes linearly from T_old_C to T_new_C (pure function)."""
+    """The state after a step of dt_s during which T goes linearly from T_old_C to T_new_C (pure function).
+
+    Each point takes m_i = ceil(|T_new - T_old| / substep_K) equal sub-steps (at least one).
+    """
     shape = state.T_min_C.shape
-    T0 = np.broadcast_to(np.asarray(T_old_C, dtype=float), shape)
-    T1 = np.broadcast_to(np.asarray(T_new_C, dtype=float), shape)
+    T0 = np.broadcast_to(np.asarray(T_old_C, dtype=float), shape).reshape(-1)
+    T1 = np.broadcast_to(np.asarray(T_new_C, dtype=float), shape).reshape(-1)
     if not (np.all(np.isfinite(T0)) and np.all(np.isfinite(T1))):
         raise ValueError("advance: temperatures must be finite")
     if not dt_s >= 0.0:
         raise ValueError(f"advance: dt_s = {dt_s} must be >= 0")
     dT = T1 - T0
-    m = max(1, int(np.ceil(np.max(np.abs(dT), initial=0.0) / kin.substep_K)))
-    h = dt_s / m
+    m = np.maximum(np.ceil(np.abs(dT) / kin.substep_K), 1.0)
 
-    fA = state.fractions["austenite"].copy()
-    products = {p: state.fractions[p].copy() for p in PHASES[1:]}
-    q = {r: state.additivity[r].copy() for r in kin.reactions}
-    T_min = state.T_min_C.copy()
-    for k in range(m):
-        Ta = T0 + dT * (k / m)
-        Tb = T0 + dT * ((k + 1) / m)
-        if h > 0.0 and kin.reactions:
-            dq = {}
-            for r, reaction in kin.reactions.items():
-                dI = 0.5 * h * sum(reaction.inverse_tau(Ta + (Tb - Ta) * g) for g in _GAUSS)
-                n = reaction.exponent(0.5 * (Ta + Tb))
-                q_new = np.minimum((q[r] ** (1.0 / n) + dI) ** n, Q_MAX)
-                dq[r] = q_new - q[r]
-                q[r] = q_new
+    fA = state.fractions["austenite"].reshape(-1).copy()
+    products = {p: state.fractions[p].reshape(-1).copy() for p in PHASES[1:]}
+    q = {r: state.additivity[r].reshape(-1).copy() for r in kin.reactions}
+    T_min = state.T_min_C.reshape(-1).copy()
+    for k in range(int(m.max(initial=1.0))):
+        # points still sub-stepping (all of them in the first sub-step)
+        sel = slice(None) if k == 0 else np.flatnonzero(m > k)
+        ms, t0, dts = m[sel], T0[sel], dT[sel]
+        Ta = t0 + dts * (k / ms)
+        Tb = t0 + dts * ((k + 1) / ms)
+        f = fA[sel]
+        if dt_s > 0.0 and kin.reactions:
+            qs = {r: q[r][sel] for r in q}
+            dq = _diffusional_increments(kin, qs, Ta, Tb, dt_s / ms)
             total = sum(dq.values())
             active = total > 0.0
-            consumed = fA * -np.expm1(-total)
+            consumed = f * -np.expm1(-total)
             for r, d in dq.items():
-                products[r] += np.where(active, consumed * d / np.where(active, total, 1.0), 0.0)
-            fA = fA - consumed
-        T_ref = np.minimum(T_min, kin.Ms_C)
-        below = Tb < T_ref
-        converted = np.where(below, fA * -np.expm1(-kin.alpha_per_K * (T_ref - Tb)), 0.0)
-        products["martensite"] += converted
-        fA = fA - converted
-        T_min = np.minimum(T_min, Tb)
+                products[r][sel] += np.where(active, consumed * d / np.where(active, total, 1.0), 0.0)
+                q[r][sel] = qs[r]
+            f = f - consumed
+        T_ref = np.minimum(T_min[sel], kin.Ms_C)
+        converted = np.where(Tb < T_ref, f * -np.expm1(-kin.alpha_per_K * (T_ref - Tb)), 0.0)
+        products["martensite"][sel] += converted
+        fA[sel] = f - converted
+        T_min[sel] = np.minimum(T_min[sel], Tb)
 
-    rate = state.cooling_rate_700_C_s.copy()
+    rate = state.cooling_rate_700_C_s.reshape(-1).copy()
     if dt_s > 0.0:
         crossing = np.isnan(rate) & (T0 > MAYNIER_RATE_T_C) & (T1 <= MAYNIER_RATE_T_C)
         rate[crossing] = dT[crossing] / -dt_s
-    fractions = {"austenite": np.maximum(fA, 0.0), **products}
-    return PhaseState(fractions=fractions, additivity=q, T_min_C=T_min, cooling_rate_700_C_s=rate)
+    fractions = {"austenite": np.maximum(fA, 0.0).reshape(shape), **{p: v.reshape(shape) for p, v in products.items()}}
+    return PhaseState(fractions=fractions, additivity={r: v.reshape(shape) for r, v in q.items()},
+                      T_min_C=T_min.reshape(shape), cooling_rate_700_C_s=rate.reshape(shape))
