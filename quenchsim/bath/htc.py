@@ -15,7 +15,8 @@ Regimes (T_b boiling point, T_L Leidenfrost temperature, T_oil bath temperature)
   where the Rohsenow flux meets q_max (closed form, Rohsenow q ~ dT_e^3).
 * Transition boiling, T_peak < T_s < T_L: q falls log-linearly in T_s from q(T_peak) to q_film(T_L).
 * Film boiling, T_s >= T_L: q = h_f (T_s - T_b) + 0.75 h_rad (T_s - T_oil) + h_c (T_b - T_oil): vapour-film
-  conduction (Bromley 1950 natural, Bromley-LeRoy-Robbers 1953 forced, blended n = 3), radiation
+  conduction (Bromley 1950 natural; Bromley-LeRoy-Robbers 1953 forced, per flow source, combined in
+  quadrature like h_c; natural and forced blended n = 3), radiation
   through the film (Bromley's 3/4), and convection from the film's liquid face (at T_b) into the
   subcooled oil.
 * Agitation: T_L = T_L0 + dT_L U/(U + U_L) with U the local speed -- faster oil shortens the vapour
@@ -120,11 +121,12 @@ def oil_heat_flux(oil: OilProperties, flow: LocalFlow, T_s: np.ndarray, T_oil: f
     dT_b = np.maximum(T_s - Tb, 1e-9)
     rho_v = oil.vapour_density(0.5 * (T_s + Tb))
     h_fg_eff = oil.latent_heat_J_kg + 0.4 * oil.vapour_specific_heat_J_kgK * dT_b
-    U = flow.velocity_m_s[:, None]
     h_nat_film = bromley_film_htc(dT_b[None, :], flow.natural_length_m[:, None], oil.vapour_conductivity_W_mK, rho_v,
                                   rho_l, oil.vapour_viscosity_Pa_s, h_fg_eff, oil.bromley_C)
-    h_forced_film = forced_film_htc(U, dT_b[None, :], flow.length_m[:, None], oil.vapour_conductivity_W_mK, rho_v,
-                                    h_fg_eff, oil.film_forced_C)
+    h_forced_film_sq = sum(forced_film_htc(U[:, None], dT_b[None, :], x[:, None], oil.vapour_conductivity_W_mK, rho_v,
+                                           h_fg_eff, oil.film_forced_C) ** 2
+                           for U, x in zip(flow.speed_m_s, flow.run_length_m))
+    h_forced_film = np.sqrt(h_forced_film_sq)
     h_c_interface = h_c[:, -1:]  # wall capped at T_b: the coefficient of the film's liquid face
     q_film = (churchill_usagi(h_nat_film, h_forced_film) * dT_b
               + 0.75 * radiation_htc(T_s, T_oil, oil.surface_emissivity) * dT_oil
