@@ -247,7 +247,7 @@ class QuenchRun:
         r_bore = _surface_r_at(self.profile, z_mid, inner=True)
         r_od = _surface_r_at(self.profile, z_mid, inner=False)
         wall = r_od - r_bore
-        depth = np.linspace(0.0, wall, n) * (1 - 1e-9)
+        depth = np.linspace(1e-6, wall - 1e-6, n)   # 1 um inside: the traverse ends on the surfaces
         r = r_bore + depth if side == "bore" else r_od - depth
         nodal = self.nodal_fields()["hardness_HRC"]
         probe = self.projection.p1.probes(np.vstack([r, np.full_like(r, z_mid)]))
@@ -264,10 +264,14 @@ class QuenchRun:
         out["probes"] = {n: {"t_to_500C_s": time_to_temperature(time_s, T, 500.0),
                              "t_to_300C_s": time_to_temperature(time_s, T, 300.0),
                              "t8_5_s": _t_between(time_s, T, 800.0, 500.0)} for n, T in probe_T.items()}
-        depth = {}
+        depth, traverse = {}, {}
         for side in ("bore", "od"):
             d, h = self.hardness_traverse(side)
+            traverse[side] = (d, h)
             depth[f"HRC58_{side}_mid"] = depth_below(d, h, HRC_THRESHOLD)
+        np.savetxt(self.out / "hardness_traverse.csv",
+                   np.column_stack([traverse["bore"][0], traverse["bore"][1], traverse["od"][1]]),
+                   delimiter=",", header="depth_mm,HRC_from_bore,HRC_from_od", comments="", fmt="%.5g")
         surface = {}
         for seg in self.profile.segments:
             if seg.name == "axis" or seg.name.startswith(("chamfer", "radius")):
