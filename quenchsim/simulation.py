@@ -18,9 +18,10 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import skfem
 from tqdm import tqdm
 
-from quenchsim import metallurgy
+from quenchsim import mechanics, metallurgy
 from quenchsim.case import Case
 from quenchsim.errors import InputError, QuenchsimError, SolverError
 from quenchsim.geometry import BoundaryPoints, SectionExtent, SectionMesh, mesh_profile, profile_from_case
@@ -133,10 +134,22 @@ class QuenchRun:
         self.material = load_material(str(case.data["material"]))
         self.T_aust = case.number("process.austenitising_temperature_C")
         self.T_room = case.number("process.room_temperature_C")
-        self.profile: Profile = profile_from_case(case.get("geometry", {}))
-        self.section = mesh_profile(self.profile, case.number("mesh.size_mm") * MM,
+        self.profile_before: Profile = profile_from_case(case.get("geometry", {}))
+        self.profile = self.profile_before
+        self.section = mesh_profile(self.profile_before, case.number("mesh.size_mm") * MM,
                                     case.number("mesh.surface_size_mm") * MM, case.number("mesh.surface_layer_mm") * MM,
                                     msh_path=self.out / "mesh.msh")
+        self.mech_model = None
+        self.before_mesh = self.section.mesh
+        mech_options = {k: v for k, v in case.get("mechanics", {}).items() if k != "enabled"}
+        if case.get("mechanics.enabled", True) and "mechanics" in self.material:
+            self.mech_model = mechanics.load_mechanics(self.material, {**mech_options, "austenitizing_T_C": self.T_aust})
+            # the case gives the room-temperature annealed ("before") section; the stress-free start is the
+            # austenitised section, larger by the free strain between the two states
+            scale = mechanics.austenitized_scale(self.mech_model)
+            self.profile = self.profile_before.scaled(scale)
+            self.section = SectionMesh(mesh=skfem.MeshTri(self.before_mesh.p * scale, self.before_mesh.t),
+                                       boundaries=self.section.boundaries, profile=self.profile)
         cooled = np.concatenate([f for n, f in self.section.boundaries.items() if n != "axis"])
         self.fe = AxisymmetricP2(self.section.mesh, cooled, intorder=INTORDER)
         self.points = boundary_points(self.fe, self.section)
@@ -145,17 +158,21 @@ class QuenchRun:
         self.thermal = ThermalSolver(self.fe, thermal_properties(self.material), self.T_aust, self.phase_model,
                                      metallurgy.initial_state(self.fe.r_qp.shape, self.kin))
         self.projection = NodalProjection(self.section.mesh, INTORDER)
+        self.mech = mechanics.MechanicsSolver(self.section.mesh, self.mech_model) if self.mech_model else None
         self._setup_probes()
 
     def _setup_probes(self) -> None:
         probes = self.case.get("probes", [])
         self.probe_names = [p["name"] for p in probes]
+        before = self.profile_before
         pts = np.array([[p["r_mm"] * MM, p["z_mm"] * MM] for p in probes]).reshape(-1, 2)
         for i, (r, z) in enumerate(pts):
-            if not self.profile.contains(r, z) and np.min(np.hypot(*_nearest(self.profile, r, z))) > 1e-9:
+            if not before.contains(r, z) and np.min(np.hypot(*_nearest(before, r, z))) > 1e-9:
                 raise InputError(f"probes[{i}]", f"{self.probe_names[i]} at ({r / MM:g}, {z / MM:g}) mm",
                                  "lies outside the section")
-        self.probe_matrix = self.fe.basis.probes(pts.T) if len(pts) else None
+        # probe positions are given on the "before" section; they move with the austenitised geometry
+        scale = self.section.mesh.p[0].max() / self.before_mesh.p[0].max()
+        self.probe_matrix = self.fe.basis.probes(pts.T * scale) if len(pts) else None
 
     def probe_temperatures(self) -> np.ndarray:
         return self.probe_matrix @ self.thermal.T if self.probe_matrix is not None else np.zeros(0)
@@ -169,6 +186,8 @@ class QuenchRun:
         hv = metallurgy.hardness_HV(state, self.kin)
         data["hardness_HV"] = self.projection(hv)
         data["hardness_HRC"] = metallurgy.hv_to_hrc(data["hardness_HV"])
+        if self.mech is not None:
+            data.update(self.mech.nodal_fields())
         return data
 
     def run(self) -> RunResult:
@@ -207,6 +226,14 @@ class QuenchRun:
                     if limit > 2.0 and dt / 2 >= float(ctl["dt_min_s"]):
                         dt, rejected = dt / 2, rejected + 1
                         continue
+                    if not self._mechanics_step(step.T_qp, step.phase_state.fractions):
+                        if dt / 2 < float(ctl["dt_min_s"]):
+                            raise SolverError(f"the stress solver did not converge at t = {self.thermal.time_s:.4g} s "
+                                              f"even with the smallest step {dt:.3g} s")
+                        log.warning("stress Newton did not converge (dt = %.3g s at t = %.4g s); cutting the step",
+                                    dt, self.thermal.time_s)
+                        dt, rejected = dt / 2, rejected + 1
+                        continue
                     self.thermal.commit(step)
                     steps += 1
                     energy_out += step.heat_out_J
@@ -221,6 +248,7 @@ class QuenchRun:
                     grow = float(ctl["growth"]) if limit < 1e-12 else min(float(ctl["growth"]), 0.9 / limit)
                     dt = float(np.clip(dt * grow, float(ctl["dt_min_s"]), float(ctl["dt_max_s"])))
                 bar.close()
+            self._equilibrate_at_room_temperature()
         except QuenchsimError as exc:
             status, error = "failed", str(exc)
             log.error("run stopped at t = %.4g s: %s", self.thermal.time_s, exc)
@@ -238,6 +266,46 @@ class QuenchRun:
         if error:
             raise SolverError(f"{error} (results up to t = {self.thermal.time_s:.4g} s are in {out})")
         return RunResult(out, summary, time_arr, probe_T)
+
+    def _mechanics_step(self, T_qp: np.ndarray, fractions: dict[str, np.ndarray]) -> bool:
+        if self.mech is None:
+            return True
+        info = self.mech.step(T_qp, fractions, self.thermal.T_qp, self.thermal.fractions())
+        return bool(info.converged)
+
+    def _equilibrate_at_room_temperature(self) -> None:
+        """Final state: the whole ring at room temperature (the air stage ends when the hottest point
+        is below air.until_max_C; the last few kelvin are one step, with the martensite they still form)."""
+        T_room = np.full(self.thermal.T.shape, self.T_room)
+        T_qp = self.fe.at_qp(T_room)
+        state = self.phase_model.advance(self.thermal.phase_state, self.thermal.T_qp, T_qp, 3600.0)
+        if not self._mechanics_step(T_qp, state.fractions):
+            raise SolverError("the stress solver did not converge in the final step to room temperature")
+        self.thermal.T, self.thermal.T_qp, self.thermal.phase_state = T_room, T_qp, state
+
+    def mechanics_summary(self) -> dict[str, Any]:
+        """Dimensions before/after, residual stresses at mid-width, traverse and outline files."""
+        before = mechanics.ring_dimensions(self.before_mesh)
+        after = mechanics.ring_dimensions(self.section.mesh, self.mech.displacement_m)
+        r0, r1, z0, z1 = self.profile.bounds()
+        z_mid = 0.5 * (z0 + z1)
+        r_bore = _surface_r_at(self.profile, z_mid, inner=True)
+        r_od = _surface_r_at(self.profile, z_mid, inner=False)
+        r = np.linspace(r_bore + 1e-6, r_od - 1e-6, 200)
+        fields = self.mech.nodal_fields()
+        probe = self.projection.p1.probes(np.vstack([r, np.full_like(r, z_mid)]))
+        hoop = probe @ fields["stress_tt_Pa"] / 1e6
+        axial = probe @ fields["stress_zz_Pa"] / 1e6
+        np.savetxt(self.out / "residual_hoop_traverse.csv", np.column_stack([r / MM, hoop, axial]), delimiter=",",
+                   header="r_mm,hoop_MPa,axial_MPa", comments="", fmt="%.6g")
+        outline_before = mechanics.section_outline(self.before_mesh)
+        outline_after = mechanics.section_outline(self.section.mesh, self.mech.displacement_m)
+        np.savetxt(self.out / "outline.csv", np.column_stack([outline_before / MM, outline_after / MM]), delimiter=",",
+                   header="r_before_mm,z_before_mm,r_after_mm,z_after_mm", comments="", fmt="%.6f")
+        at = {"od_surface_mid": -1, "bore_surface_mid": 0, "core_mid": len(r) // 2}
+        return {"dimensions_mm": mechanics.dimension_change(before, after),
+                "residual_stress_MPa": {"hoop": {k: float(hoop[i]) for k, i in at.items()},
+                                        "axial": {k: float(axial[i]) for k, i in at.items()}}}
 
     # -- summary --------------------------------------------------------------------------------
     def hardness_traverse(self, side: str, n: int = 400) -> tuple[np.ndarray, np.ndarray]:
@@ -285,6 +353,8 @@ class QuenchRun:
         out["hardness"] = {"depth_mm": depth, "surface_HRC": surface, "core_HRC": core,
                            "threshold_HRC": HRC_THRESHOLD, "through_hardened": bool(np.nanmin(hrc) >= HRC_THRESHOLD)}
         out["phases_final"] = phase_statistics(self.thermal.fractions(), self.fe.r_dx)
+        if self.mech is not None:
+            out.update(self.mechanics_summary())
         out["energy"] = {"heat_extracted_J": energy_out, "latent_released_J": latent}
         out["solver"] = {"wall_time_s": time.perf_counter() - wall0, "steps": steps, "rejected_steps": rejected,
                          "dofs": int(self.fe.n_dofs), "elements": int(self.section.n_elements),

@@ -58,6 +58,12 @@ class Profile:
 
     segments: tuple[Segment, ...]
 
+    def scaled(self, factor: float) -> "Profile":
+        """The profile scaled about the origin (r = 0, z = 0) by ``factor`` (free isotropic strain)."""
+        def sc(xy: tuple[float, float] | None) -> tuple[float, float] | None:
+            return None if xy is None else (xy[0] * factor, xy[1] * factor)
+        return Profile(tuple(Segment(s.name, sc(s.start), sc(s.end), sc(s.center)) for s in self.segments))
+
     def polygon(self, per_segment: int = 32) -> np.ndarray:
         return np.vstack([s.points(per_segment)[:-1] for s in self.segments])
 
