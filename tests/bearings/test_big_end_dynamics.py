@@ -71,10 +71,24 @@ def test_single_roller_between_rings_rolls_without_slip():
                     atol=atol_vector(p), t_eval=t_eval)
     assert sol.success
     x, y, vx, vy, w = sol.y[0], sol.y[1], sol.y[8], sol.y[9], sol.y[10]
+    xo, yo, vxo, vyo = sol.y[6], sol.y[7], sol.y[14], sol.y[15]
+    r = p.r_roller
+    # sliding / rolling speed at the pin contact: roller surface u.t - r w against the fixed pin
+    d = np.hypot(x, y)
+    tx, ty = -y / d, x / d
+    ut = vx * tx + vy * ty
+    slide_in = (ut - r * w) / np.abs(r * w)
+    # outer contact: roller surface u.t + r w against the bore u_o.t + omega_o R_o
+    do = np.hypot(x - xo, y - yo)
+    tx, ty = -(y - yo) / do, (x - xo) / do
+    slide_out = (vx * tx + vy * ty + r * w - (vxo * tx + vyo * ty + omega_o * p.r_out)) / np.abs(r * w)
+    assert np.max(np.abs(slide_in)) < 1e-3 and np.max(np.abs(slide_out)) < 1e-3  # < 0.1 % sliding
+    # kinematics: orbit and spin within the geometric offset (clearance / pitch diameter ~ 0.1 %) of
+    # the nominal pure-rolling speeds
     orbit_th, spin_th = theoretical_speeds(p, np.array([omega_o]))
     orbit = (x * vy - y * vx) / (x**2 + y**2)
-    assert np.max(np.abs(1 - orbit / orbit_th)) < 1e-3  # orbital slip < 0.1 %
-    assert np.max(np.abs(1 - (w - orbit) / spin_th)) < 1e-3  # spin slip < 0.1 %
+    assert np.max(np.abs(1 - orbit / orbit_th)) < 3e-3
+    assert np.max(np.abs(1 - (w - orbit) / spin_th)) < 3e-3
     # the roller carries the load: it sits on the loaded side (inertial angle pi = -X)
     th_end = p.omega * sol.t
     ang_inertial = np.arctan2(y, x) + th_end

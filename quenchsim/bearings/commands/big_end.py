@@ -19,7 +19,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--clearance-set", type=int, default=2, help="1-based [[clearance_set]] (default 2)")
     parser.add_argument("--mode", choices=MODES, default="engine", help="engine (default), static or rig")
     parser.add_argument("--revolutions", type=float, default=None, help="override the case's revolutions")
-    parser.add_argument("--integrator", choices=INTEGRATORS, default=DEFAULT_INTEGRATOR)
+    parser.add_argument("--integrator", choices=INTEGRATORS, default=None,
+                        help=f"SciPy method (default per mode, measured: {DEFAULT_INTEGRATOR})")
     parser.add_argument("--out", type=Path, default=None, help="directory for the CSV time series and PNG plots")
 
 
