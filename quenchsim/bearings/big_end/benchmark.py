@@ -8,8 +8,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from quenchsim.bearings.big_end.case import BigEndCase
-from quenchsim.bearings.big_end.dynamics import rhs
-from quenchsim.bearings.big_end.simulate import INTEGRATORS, RTOL, build_params, integrate, solver_options
+from quenchsim.bearings.big_end.simulate import (INTEGRATORS, RTOL, build_params, integrate, rhs_function,
+                                                 solver_options)
 
 
 class _Budget(Exception):
@@ -25,6 +25,7 @@ def integrator_benchmark(case: BigEndCase, set_number: int, mode: str, settle_re
     p, _, _ = build_params(case, set_number, mode)
     t, y, _, _ = integrate(p, settle_revolutions, 36, "RK45")
     t0, y0 = t[-1], y[:, -1]
+    rhs = rhs_function(p)
     t1 = t0 + window_revolutions * 2 * np.pi / p.omega
     rows = []
     for method in methods:
@@ -34,7 +35,7 @@ def integrator_benchmark(case: BigEndCase, set_number: int, mode: str, settle_re
             count[0] += 1
             if count[0] > max_evaluations:
                 raise _Budget
-            return rhs(tt, yy, p)
+            return rhs(tt, yy)
 
         start = time.perf_counter()
         try:
