@@ -1,0 +1,429 @@
+"""Parameter sweeps: a base case plus grids or lists of any dotted case field, run on Dask distributed.
+
+A sweep file (TOML)::
+
+    [sweep]
+    case = "crb_outer_ring.toml"     # base case, relative to the sweep file
+    condition = "1"                  # named condition of the base case (if it has conditions)
+
+    [set]                            # fixed overrides applied to every case (nested tables or
+    mesh.size_mm = 12.0              # quoted dotted keys; each leaf is one case field)
+
+    [grid]                           # Cartesian product of every list
+    quench.bath.id_jet_speed_mm_s = [400.0, 1000.0, 2000.0]
+    quench.bath.od_jet_speed_mm_s = [1780.0, 5340.0]
+
+    [zip]                            # lists of equal length varied together (combined with [grid])
+    process.austenitising_temperature_C = [830.0, 845.0]
+    quench.time_s = [600.0, 900.0]
+
+Each case runs in ``OUT/<name from the parameter values>/`` (the ``quenchsim run`` output contract,
+plus ``sweep_case.json`` with the inputs of the case). ``OUT/results.csv`` has one row per finished
+case -- status (ok / failed), error, the swept inputs, the key outputs of ``summary.json`` flattened
+to dotted column names -- and is rewritten atomically after every case. A case whose folder holds a
+``summary.json`` with status ok and the same inputs is not run again, so an interrupted sweep
+(Ctrl-C, a killed process or a lost worker) is finished by running the same command again.
+
+Execution: Dask distributed -- a ``LocalCluster`` (``workers`` processes, one thread each) or an
+existing scheduler by address; ``workers=0`` runs the cases one after another in this process
+(the serial reference of the speed-up measurement, and for debugging).
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import itertools
+import json
+import logging
+import re
+import time
+import tomllib
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Iterator
+
+from tqdm import tqdm
+
+from quenchsim.case import case_from_dict
+from quenchsim.errors import InputError, require
+
+RESULTS_CSV = "results.csv"
+SWEEP_JSON = "sweep.json"
+CASE_JSON = "sweep_case.json"
+KEY_OUTPUTS = ("probes", "hardness", "phases_final", "dimensions_mm", "residual_stress_MPa", "solver")
+"""Top-level tables of summary.json whose numeric leaves become result columns."""
+SOLVER_KEYS = ("wall_time_s", "steps", "dofs")
+log = logging.getLogger("quenchsim")
+
+
+@dataclass
+class SweepSpec:
+    """A parsed sweep: base case, fixed overrides and one dict of dotted parameter values per case."""
+
+    name: str
+    case_path: Path | None
+    condition: str | None
+    fixed: dict[str, Any]
+    parameters: list[str]
+    points: list[dict[str, Any]]
+    raw_case: dict[str, Any] = field(repr=False, default_factory=dict)
+
+    def overrides(self, point: dict[str, Any]) -> dict[str, Any]:
+        """Every dotted override of one case: the fixed ones, then the case's parameter values."""
+        return {**self.fixed, **point}
+
+
+@dataclass
+class SweepOutcome:
+    """What a call of :func:`run_sweep` did."""
+
+    out_dir: Path
+    rows: list[dict[str, Any]]
+    skipped: int
+    ran: int
+    failed: int
+    pending: int
+    wall_time_s: float
+    interrupted: bool = False
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"out": str(self.out_dir), "cases": len(self.rows) + self.pending, "skipped": self.skipped,
+                "ran": self.ran, "failed": self.failed, "pending": self.pending,
+                "wall_time_s": round(self.wall_time_s, 3), "interrupted": self.interrupted,
+                "results": str(self.out_dir / RESULTS_CSV)}
+
+
+def flatten(table: dict[str, Any], prefix: str = "") -> Iterator[tuple[str, Any]]:
+    """Leaves of nested tables as ``(dotted key, value)``; quoted dotted keys pass through unchanged."""
+    for key, value in table.items():
+        dotted = f"{prefix}{key}"
+        if isinstance(value, dict):
+            yield from flatten(value, dotted + ".")
+        else:
+            yield dotted, value
+
+
+def _has_parent(data: dict[str, Any], dotted: str) -> bool:
+    node: Any = data
+    for key in dotted.split(".")[:-1]:
+        if not isinstance(node, dict) or key not in node:
+            return False
+        node = node[key]
+    return isinstance(node, dict)
+
+
+def parse_sweep(raw: dict[str, Any], base_dir: Path, name: str = "sweep") -> SweepSpec:
+    """Build a :class:`SweepSpec` from a sweep table (as read from TOML); errors name the field."""
+    unknown = set(raw) - {"sweep", "set", "grid", "zip"}
+    require(not unknown, "sweep file", sorted(unknown), "allowed tables: [sweep], [set], [grid], [zip]")
+    head = raw.get("sweep", {})
+    require(isinstance(head, dict) and isinstance(head.get("case"), str), "sweep.case", head.get("case"),
+            "required: the base case file (relative to the sweep file)")
+    case_path = (base_dir / head["case"]).resolve()
+    require(case_path.is_file(), "sweep.case", head["case"], f"file not found ({case_path})")
+    with case_path.open("rb") as fh:
+        try:
+            raw_case = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise InputError("sweep.case", head["case"], f"is not valid TOML ({exc})") from None
+    condition = head.get("condition")
+    return make_sweep(raw_case, grid=raw.get("grid", {}), zipped=raw.get("zip", {}), fixed=raw.get("set", {}),
+                      condition=None if condition is None else str(condition), case_path=case_path,
+                      name=str(head.get("name", name)))
+
+
+def make_sweep(raw_case: dict[str, Any], grid: dict[str, Any] | None = None, zipped: dict[str, Any] | None = None,
+               fixed: dict[str, Any] | None = None, condition: str | None = None, case_path: Path | None = None,
+               name: str = "sweep") -> SweepSpec:
+    """A sweep of a case table (e.g. built in a script): ``grid`` lists form a Cartesian product,
+    ``zipped`` lists vary together, ``fixed`` applies to every case; keys are dotted case fields
+    (or nested tables of them). The base case with the fixed overrides is validated here."""
+    fixed_flat = dict(flatten(fixed or {}))
+    grid_flat = dict(flatten(grid or {}))
+    zip_flat = dict(flatten(zipped or {}))
+    for table, values in (("grid", grid_flat), ("zip", zip_flat)):
+        for key, v in values.items():
+            require(isinstance(v, list) and len(v) > 0, f"{table}.{key}", v, "must be a non-empty list of values")
+    lengths = {len(v) for v in zip_flat.values()}
+    require(len(lengths) <= 1, "zip", {k: len(v) for k, v in zip_flat.items()}, "lists must have equal lengths")
+    parameters = [*grid_flat, *zip_flat]
+    require(len(parameters) > 0, "grid", None, "a sweep needs at least one list in [grid] or [zip]")
+    clash = (set(grid_flat) & set(zip_flat)) | (set(parameters) & set(fixed_flat))
+    require(not clash, "sweep parameters", sorted(clash), "a field may appear in only one of [set], [grid], [zip]")
+    # the base case with the fixed overrides must be valid on its own: a typo fails before any run
+    base = case_from_dict(raw_case, condition, fixed_flat, path=case_path)
+    for key in parameters:
+        require(_has_parent(base.data, key), key, (grid_flat | zip_flat)[key],
+                "is not a field of the case (its parent table does not exist)")
+    zip_rows = [dict(zip(zip_flat, values)) for values in zip(*zip_flat.values())] or [{}]
+    points = [{**dict(zip(grid_flat, combo)), **z} for combo in itertools.product(*grid_flat.values())
+              for z in zip_rows]
+    return SweepSpec(name=name, case_path=case_path, condition=condition, fixed=fixed_flat,
+                     parameters=parameters, points=points, raw_case=raw_case)
+
+
+def load_sweep(path: str | Path) -> SweepSpec:
+    """Read a sweep file (see the module docstring)."""
+    path = Path(path)
+    require(path.is_file(), "sweep", str(path), "file not found")
+    with path.open("rb") as fh:
+        try:
+            raw = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise InputError("sweep", str(path), f"is not valid TOML ({exc})") from None
+    return parse_sweep(raw, path.parent, name=path.stem)
+
+
+def _format_value(value: Any) -> str:
+    if isinstance(value, float):
+        return format(value, ".6g")
+    return str(value)
+
+
+def case_names(parameters: list[str], points: list[dict[str, Any]]) -> list[str]:
+    """Folder names from the parameter values, e.g. ``id_jet_speed_mm_s=400_od_jet_speed_mm_s=1780``.
+
+    Each parameter is named by the shortest tail of its dotted key that is unique among the
+    parameters; names that still collide (values equal after formatting) get a ``-N`` suffix.
+    """
+    short: dict[str, str] = {}
+    for key in parameters:
+        parts = key.split(".")
+        for n in range(1, len(parts) + 1):
+            tail = ".".join(parts[-n:])
+            if sum(1 for other in parameters if other == tail or other.endswith("." + tail)) == 1:
+                short[key] = tail
+                break
+    names: list[str] = []
+    for point in points:
+        name = "_".join(f"{short[k]}={_format_value(point[k])}" for k in parameters)
+        name = re.sub(r"[^A-Za-z0-9._=+-]", "-", name)
+        base, n = name, 1
+        while name in names:
+            n += 1
+            name = f"{base}-{n}"
+        names.append(name)
+    return names
+
+
+def flatten_summary(summary: dict[str, Any]) -> dict[str, Any]:
+    """The key outputs of a summary.json as ``{dotted name: number}`` (phase fractions: mean only)."""
+    out: dict[str, Any] = {}
+    for top in KEY_OUTPUTS:
+        table = summary.get(top)
+        if not isinstance(table, dict):
+            continue
+        for key, value in flatten(table, top + "."):
+            if top == "phases_final" and not key.endswith(".mean"):
+                continue
+            if top == "solver" and key.split(".")[-1] not in SOLVER_KEYS:
+                continue
+            if value is None or isinstance(value, bool) or isinstance(value, (int, float)):
+                out[key] = value
+    return out
+
+
+def case_hash(raw_case: dict[str, Any], condition: str | None, overrides: dict[str, Any]) -> str:
+    """A fingerprint of every input of one case (base table, condition, overrides)."""
+    text = json.dumps([raw_case, condition, overrides], sort_keys=True, default=str)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _write_json(path: Path, data: Any) -> None:
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps(data, indent=2, default=str))
+    tmp.replace(path)
+
+
+def run_point(raw_case: dict[str, Any], case_path: str | None, condition: str | None, overrides: dict[str, Any],
+              out_dir: str) -> dict[str, Any]:
+    """Run one case of a sweep into ``out_dir`` (executed on a Dask worker; never raises).
+
+    Returns ``{"status": "ok" | "failed", "error": str | None, "summary": dict | None, "wall_s": float}``.
+    """
+    import tomli_w
+
+    from quenchsim.simulation import run_case
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    record = {"case": case_path, "condition": condition, "overrides": overrides,
+              "inputs_hash": case_hash(raw_case, condition, overrides)}
+    _write_json(out / CASE_JSON, record)
+    summary_path = out / "summary.json"
+    summary_path.unlink(missing_ok=True)
+    try:
+        case = case_from_dict(raw_case, condition, overrides, path=Path(case_path) if case_path else None)
+        resolved = {"name": case.name, "condition": case.condition or "", **case.data}
+        (out / "case.toml").write_text(tomli_w.dumps(resolved))
+        summary = run_case(case, out, progress=False).summary
+        status, error = str(summary.get("status", "ok")), summary.get("error")
+    except Exception as exc:  # noqa: BLE001 -- a sweep records any failure of a case and goes on
+        summary = json.loads(summary_path.read_text()) if summary_path.is_file() else None
+        status, error = "failed", f"{type(exc).__name__}: {exc}"
+        log.debug("case %s failed:\n%s", out, traceback.format_exc())
+    if status != "ok":
+        _write_json(out / CASE_JSON, {**record, "error": error})
+    return {"status": status, "error": error, "summary": summary, "wall_s": time.perf_counter() - t0}
+
+
+def finished(case_dir: Path, inputs_hash: str) -> dict[str, Any] | None:
+    """The summary of a case folder that finished with status ok for the same inputs, else None."""
+    try:
+        record = json.loads((case_dir / CASE_JSON).read_text())
+        summary = json.loads((case_dir / "summary.json").read_text())
+    except (OSError, ValueError):
+        return None
+    return summary if record.get("inputs_hash") == inputs_hash and summary.get("status") == "ok" else None
+
+
+class ResultsTable:
+    """``results.csv``: one row per finished case in sweep order, rewritten atomically on every update."""
+
+    def __init__(self, path: Path, names: list[str], parameters: list[str]) -> None:
+        self.path = path
+        self.names = names
+        self.parameters = parameters
+        self.rows: dict[str, dict[str, Any]] = {}
+
+    def add(self, name: str, point: dict[str, Any], status: str, error: str | None,
+            summary: dict[str, Any] | None) -> dict[str, Any]:
+        row = {"case": name, "status": status, "error": error or "", **point,
+               **(flatten_summary(summary) if summary else {})}
+        self.rows[name] = row
+        self.write()
+        return row
+
+    def ordered(self) -> list[dict[str, Any]]:
+        return [self.rows[n] for n in self.names if n in self.rows]
+
+    def write(self) -> None:
+        rows = self.ordered()
+        columns = ["case", "status", "error", *self.parameters]
+        for row in rows:
+            columns += [k for k in row if k not in columns]
+        tmp = self.path.with_name(self.path.name + ".tmp")
+        with tmp.open("w", newline="") as fh:
+            writer = csv.DictWriter(fh, fieldnames=columns, restval="")
+            writer.writeheader()
+            for row in rows:
+                writer.writerow({k: ("" if v is None else v) for k, v in row.items()})
+        tmp.replace(self.path)
+
+
+def read_results(path: str | Path) -> list[dict[str, Any]]:
+    """Read a results.csv back; numeric cells become floats, empty cells None."""
+    def cell(value: str) -> Any:
+        if value == "":
+            return None
+        try:
+            return float(value)
+        except ValueError:
+            return value
+
+    with Path(path).open(newline="") as fh:
+        return [{k: (v if k in ("case", "status", "error") else cell(v)) for k, v in row.items()}
+                for row in csv.DictReader(fh)]
+
+
+def _client(scheduler: str | None, workers: int) -> tuple[Any, Any]:
+    from dask.distributed import Client, LocalCluster
+
+    logging.getLogger("distributed").setLevel(logging.ERROR)
+    if scheduler:
+        return Client(scheduler, timeout="30s"), None
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                           silence_logs=logging.ERROR)
+    return Client(cluster), cluster
+
+
+def run_sweep(spec: SweepSpec, out_dir: str | Path, scheduler: str | None = None, workers: int = 2,
+              progress: bool = True, on_result: Callable[[dict[str, Any]], None] | None = None) -> SweepOutcome:
+    """Run every case of ``spec`` not yet finished into ``out_dir`` and keep ``results.csv`` current.
+
+    ``scheduler``: address of a running Dask scheduler (e.g. ``tcp://10.0.0.5:8786``); otherwise a
+    LocalCluster with ``workers`` processes of one thread, or (``workers=0``) this process, serially.
+    Ctrl-C stops the sweep; everything finished is already on disk and ``interrupted`` is set.
+    """
+    require(isinstance(workers, int) and workers >= 0, "--workers", workers, "must be an integer >= 0")
+    out = Path(out_dir).resolve()
+    out.mkdir(parents=True, exist_ok=True)
+    names = case_names(spec.parameters, spec.points)
+    case_path = str(spec.case_path) if spec.case_path else None
+    _write_json(out / SWEEP_JSON, {"name": spec.name, "case": case_path, "condition": spec.condition,
+                                   "fixed": spec.fixed, "parameters": spec.parameters,
+                                   "cases": [{"name": n, **p} for n, p in zip(names, spec.points)]})
+    table = ResultsTable(out / RESULTS_CSV, names, spec.parameters)
+    todo: list[tuple[str, dict[str, Any]]] = []
+    for name, point in zip(names, spec.points):
+        summary = finished(out / name, case_hash(spec.raw_case, spec.condition, spec.overrides(point)))
+        if summary is not None:
+            table.rows[name] = {"case": name, "status": "ok", "error": "", **point, **flatten_summary(summary)}
+        else:
+            todo.append((name, point))
+    table.write()
+    skipped = len(spec.points) - len(todo)
+    t0 = time.perf_counter()
+    ran = failed = 0
+    interrupted = False
+    bar = tqdm(total=len(spec.points), initial=skipped, desc=f"sweep {spec.name}", unit="case", disable=not progress)
+    by_name = dict(todo)
+
+    def record(name: str, result: dict[str, Any]) -> None:
+        nonlocal ran, failed
+        ran += 1
+        failed += result["status"] != "ok"
+        row = table.add(name, by_name[name], result["status"], result["error"], result["summary"])
+        bar.update(1)
+        bar.set_postfix_str(f"{failed} failed" if failed else "")
+        if on_result is not None:
+            on_result(row)
+
+    args = {name: (spec.raw_case, case_path, spec.condition, spec.overrides(point), str(out / name))
+            for name, point in todo}
+    try:
+        if todo and workers == 0 and not scheduler:
+            for name, _ in todo:
+                record(name, run_point(*args[name]))
+        elif todo:
+            interrupted = _run_on_dask(args, scheduler, workers, record)
+    except KeyboardInterrupt:
+        interrupted = True
+    finally:
+        bar.close()
+    rows = table.ordered()
+    return SweepOutcome(out_dir=out, rows=rows, skipped=skipped, ran=ran, failed=failed,
+                        pending=len(spec.points) - len(rows), wall_time_s=time.perf_counter() - t0,
+                        interrupted=interrupted)
+
+
+def _run_on_dask(args: dict[str, tuple[Any, ...]], scheduler: str | None, workers: int,
+                 record: Callable[[str, dict[str, Any]], None]) -> bool:
+    """Submit every case, record results as they arrive; True when interrupted by Ctrl-C."""
+    from dask.distributed import as_completed
+
+    require(workers >= 1 or scheduler, "--workers", workers, "must be >= 1 for a LocalCluster")
+    client, cluster = _client(scheduler, workers)
+    futures = {}
+    try:
+        # the base case table is the same for every case: ship it to the workers once
+        raw = client.scatter(next(iter(args.values()))[0], broadcast=True)
+        for name, (_, *rest) in args.items():
+            futures[client.submit(run_point, raw, *rest, key=f"quenchsim-{name}-{time.time_ns()}", pure=False)] = name
+        for future in as_completed(futures):
+            try:
+                result = future.result()
+            except Exception as exc:  # noqa: BLE001 -- a lost worker fails its case, the rest go on
+                result = {"status": "failed", "error": f"{type(exc).__name__}: {exc}", "summary": None}
+            record(futures[future], result)
+        return False
+    except KeyboardInterrupt:
+        client.cancel(list(futures))
+        return True
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
