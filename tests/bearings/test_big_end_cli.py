@@ -52,6 +52,7 @@ def _edited(tmp_path, old, new, source=CASE):
     (r"^n_rollers = 11", "n_rollers = 0", "bearing.n_rollers"),
     (r"^n_rollers = 11", "n_rollers = 40", "bearing.n_rollers"),
     (r'^oil = "engine_oil_sae30"', 'oil = "castor_bean"', "lubrication.oil"),
+    (r"^width_mm = 9.8", "width_mm = 7.0", "bearing.width_mm"),
 ])
 def test_bad_inputs_give_one_line_errors(tmp_path, capsys, old, new, field):
     path = _edited(tmp_path, old, new)

@@ -132,6 +132,10 @@ def _bearing(t: dict[str, Any]) -> Bearing:
     require(lands in (1, 2), "bearing.cage_lands", lands, "must be 1 or 2")
     nu = _get(t, "bearing", "poisson_ratio")
     require(nu < 0.5, "bearing.poisson_ratio", nu, "must be < 0.5")
+    width = _get(t, "bearing", "width_mm")
+    occupied = _get(t, "bearing", "effective_roller_length_mm") + lands * _get(t, "bearing", "cage_land_width_mm")
+    require(occupied <= width, "bearing.width_mm", width,
+            f"must hold the roller length + {lands} cage land(s) = {occupied:.3f} mm")
     return Bearing(
         outer_race_id=_get(t, "bearing", "outer_race_id_mm") * 1e-3,
         roller_diameter=_get(t, "bearing", "roller_diameter_mm") * 1e-3,
@@ -161,9 +165,9 @@ def _clearance_sets(data: dict[str, Any], bearing: Bearing, model: Model) -> tup
                 f"interference must be < {MAX_INTERFERENCE_FRACTION * d * 1e3:.4f} mm "
                 f"({MAX_INTERFERENCE_FRACTION:.0%} of the roller diameter)")
         inner_od = bearing.outer_race_id - 2 * d - radial
-        require(inner_od > 0.2 * bearing.outer_race_id, "bearing.roller_diameter_mm", d * 1e3,
-                f"must leave a crank pin: 2 x roller diameter + radial clearance < outer race ID "
-                f"(annulus ~ {(bearing.outer_race_id - 0.2 * bearing.outer_race_id) / 2 * 1e3:.3f} mm)")
+        require(inner_od > 0.0, "bearing.roller_diameter_mm", d * 1e3,
+                f"rollers must fit in the annulus: 2 x roller diameter + radial clearance "
+                f"({(2 * d + radial) * 1e3:.3f} mm) must be < outer race ID {bearing.outer_race_id * 1e3:.3f} mm")
         pitch = 0.5 * (inner_od + bearing.outer_race_id) / 2
         require(bearing.n_rollers * (d + pocket) < 2 * math.pi * pitch, "bearing.n_rollers",
                 bearing.n_rollers, f"rollers + pockets do not fit on the pitch circle "
