@@ -15,10 +15,11 @@ D = H^3 [[1 + k^2, -k], [-k, 1]] and the Couette vector (H, 0).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
-from quenchsim.bearings.gas_journal.geometry import Grid
+from quenchsim.bearings.gas_journal.geometry import Grid, Grooves, coarsen_cells, groove_depth_cells
 
 # fractional (d_xi, d_eta) positions of the half-face midpoints [ab, dc, ad, bc] inside a cell
 FACE_POINTS = ((0.5, 0.25), (0.5, 0.75), (0.25, 0.5), (0.75, 0.5))
@@ -34,58 +35,75 @@ class FilmFrame:
     sign: float = 1.0
     offset: float = 0.0
 
-
-def sleeve_angle(grid: Grid, xi_index: np.ndarray, eta_index: np.ndarray, frame: FilmFrame) -> np.ndarray:
-    """Sleeve-frame angle of points given by fractional grid indices."""
-    return frame.sign * grid.theta(xi_index, eta_index) + frame.offset
-
-
-def smooth_film(theta_s: np.ndarray, eccentricity: tuple[float, float]) -> np.ndarray:
-    """H without grooves: 1 - e_x cos(theta_s) - e_y sin(theta_s)."""
-    return 1.0 - eccentricity[0] * np.cos(theta_s) - eccentricity[1] * np.sin(theta_s)
+    def grid_displacement(self, displacement: tuple[float, float]) -> tuple[float, float]:
+        """(a, b) with e_x cos(theta_s) + e_y sin(theta_s) = a cos(theta) + b sin(theta)."""
+        c, s = np.cos(self.offset), np.sin(self.offset)
+        ex, ey = displacement
+        return (ex * c + ey * s, self.sign * (ey * c - ex * s))
 
 
-def _cell_indices(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
-    return np.meshgrid(np.arange(grid.n_xi, dtype=float), np.arange(grid.n_eta, dtype=float))
+class FilmGeometry:
+    """Groove depth and the trigonometry of every half-face and quarter-cell point of one grid."""
+
+    def __init__(self, grid: Grid, depth: np.ndarray) -> None:
+        self.grid = grid
+        self.depth = depth
+        ii, jj = np.meshgrid(np.arange(grid.n_xi, dtype=float), np.arange(grid.n_eta, dtype=float))
+        face = np.stack([grid.theta(ii + dx, jj + dy) for dx, dy in FACE_POINTS], axis=-1)
+        quarter = np.stack([grid.theta(ii + dx, jj + dy) for dx, dy in QUARTER_POINTS], axis=-1)
+        self.face_cos, self.face_sin = np.cos(face), np.sin(face)
+        self.quarter_cos, self.quarter_sin = np.cos(quarter), np.sin(quarter)
+        nj, ni = np.meshgrid(np.arange(grid.n_eta + 1, dtype=float), np.arange(grid.n_xi, dtype=float), indexing="ij")
+        node = grid.theta(ni, nj)
+        self.node_cos, self.node_sin = np.cos(node), np.sin(node)
+
+    def face_films(self, displacement: tuple[float, float], frame: FilmFrame) -> np.ndarray:
+        """H at the four half-face midpoints of each cell, shape (n_eta, n_xi, 4)."""
+        a, b = frame.grid_displacement(displacement)
+        return 1.0 + self.depth[..., None] - a * self.face_cos - b * self.face_sin
+
+    def coefficients(self, displacement: tuple[float, float], frame: FilmFrame) -> np.ndarray:
+        """Half-face coefficients [D_main, D_cross, c] of the exact (groove-resolving) film."""
+        h = self.face_films(displacement, frame)
+        k = self.grid.skew
+        coef = np.empty(h.shape + (3,))
+        h3 = h ** 3
+        coef[..., 0:2, 0] = h3[..., 0:2] * (1.0 + k * k)
+        coef[..., 0:2, 1] = -k * h3[..., 0:2]
+        coef[..., 0:2, 2] = h[..., 0:2]
+        coef[..., 2:4, 0] = h3[..., 2:4]
+        coef[..., 2:4, 1] = -k * h3[..., 2:4]
+        coef[..., 2:4, 2] = 0.0
+        return coef
+
+    def volume(self, displacement: tuple[float, float], frame: FilmFrame) -> np.ndarray:
+        """Film volume of each control volume (sum of H * area over its quarter cells), node shape."""
+        a, b = frame.grid_displacement(displacement)
+        h = (1.0 + self.depth[..., None] - a * self.quarter_cos - b * self.quarter_sin)
+        h *= 0.25 * self.grid.h_xi * self.grid.h_eta
+        n = self.grid.n_eta
+        vol = np.zeros(self.grid.shape)
+        vol[:n] += h[..., 0]
+        vol[:n, 1:] += h[:, :-1, 1]
+        vol[:n, 0] += h[:, -1, 1]
+        vol[1:, 1:] += h[:, :-1, 2]
+        vol[1:, 0] += h[:, -1, 2]
+        vol[1:] += h[..., 3]
+        return vol
+
+    def min_film(self, displacement: tuple[float, float], frame: FilmFrame) -> float:
+        """Smallest film thickness ratio on the half-face points."""
+        return float(self.face_films(displacement, frame).min())
 
 
-def face_films(grid: Grid, depth: np.ndarray, eccentricity: tuple[float, float], frame: FilmFrame) -> np.ndarray:
-    """H at the four half-face midpoints of each cell, shape (n_eta, n_xi, 4)."""
-    ii, jj = _cell_indices(grid)
-    out = np.empty((grid.n_eta, grid.n_xi, 4))
-    for k, (dx, dy) in enumerate(FACE_POINTS):
-        out[..., k] = smooth_film(sleeve_angle(grid, ii + dx, jj + dy, frame), eccentricity) + depth
-    return out
-
-
-def node_mass(grid: Grid, depth: np.ndarray, eccentricity: tuple[float, float], frame: FilmFrame) -> np.ndarray:
-    """Film volume of each control volume, sum of H * area over its quarter cells, shape (n_eta + 1, n_xi)."""
-    ii, jj = _cell_indices(grid)
-    quarter = 0.25 * grid.h_xi * grid.h_eta
-    mass = np.zeros(grid.shape)
-    for (dx, dy), (ci, cj) in zip(QUARTER_POINTS, CORNERS):
-        h = smooth_film(sleeve_angle(grid, ii + dx, jj + dy, frame), eccentricity) + depth
-        contrib = h * quarter
-        mass[cj:cj + grid.n_eta, :] += np.roll(contrib, ci, axis=1)
-    return mass
-
-
-def exact_coefficients(grid: Grid, depth: np.ndarray, eccentricity: tuple[float, float],
-                       frame: FilmFrame) -> np.ndarray:
-    """Half-face coefficients [D_main, D_cross, c] of the exact (groove-resolving) film."""
-    h = face_films(grid, depth, eccentricity, frame)
-    k = grid.skew
-    coef = np.empty((grid.n_eta, grid.n_xi, 4, 3))
-    h3 = h ** 3
-    coef[..., 0:2, 0] = h3[..., 0:2] * (1.0 + k * k)
-    coef[..., 0:2, 1] = -k * h3[..., 0:2]
-    coef[..., 0:2, 2] = h[..., 0:2]
-    coef[..., 2:4, 0] = h3[..., 2:4]
-    coef[..., 2:4, 1] = -k * h3[..., 2:4]
-    coef[..., 2:4, 2] = 0.0
-    return coef
-
-
-def min_film(grid: Grid, depth: np.ndarray, eccentricity: tuple[float, float], frame: FilmFrame) -> float:
-    """Smallest film thickness ratio on the half-face points (must stay positive)."""
-    return float(face_films(grid, depth, eccentricity, frame).min())
+@lru_cache(maxsize=32)
+def film_hierarchy(grid: Grid, grooves: Grooves | None) -> tuple[FilmGeometry, ...]:
+    """Film geometry of ``grid`` and its 2x coarsenings (finest first); coarse cells carry the
+    area-averaged groove depth of their fine cells."""
+    depth = groove_depth_cells(grid, grooves)
+    levels = [FilmGeometry(grid, depth)]
+    while grid.can_coarsen():
+        grid = grid.coarsen()
+        depth = coarsen_cells(depth)
+        levels.append(FilmGeometry(grid, depth))
+    return tuple(levels)

@@ -9,10 +9,11 @@ trapezoidal rule around, Simpson's rule along Z (reference: pressure integrals b
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 
-from quenchsim.bearings.gas_journal.film import FilmFrame, sleeve_angle
+from quenchsim.bearings.gas_journal.film import FilmFrame
 from quenchsim.bearings.gas_journal.geometry import Grid
 
 
@@ -24,14 +25,23 @@ def simpson_weights(n_intervals: int, h: float) -> np.ndarray:
     return w * h / 3.0
 
 
-def film_force(grid: Grid, p: np.ndarray, frame: FilmFrame = FilmFrame()) -> np.ndarray:
-    """Dimensionless film force (F_x, F_y) on the rotor in the sleeve frame."""
+@lru_cache(maxsize=32)
+def _weighted_trig(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
     jj, ii = np.meshgrid(np.arange(grid.n_eta + 1, dtype=float), np.arange(grid.n_xi, dtype=float), indexing="ij")
-    th = sleeve_angle(grid, ii, jj, frame)
-    wz = simpson_weights(grid.n_eta, grid.h_eta)[:, None] * grid.h_xi
-    dp = (p - 1.0) * wz
-    scale = -1.0 / (2.0 * grid.eta_max)  # -(r / L) with L / r = 2 L/D
-    return scale * np.array([np.sum(dp * np.cos(th)), np.sum(dp * np.sin(th))])
+    th = grid.theta(ii, jj)
+    wz = simpson_weights(grid.n_eta, grid.h_eta)[:, None] * grid.h_xi * (-1.0 / (2.0 * grid.eta_max))
+    return wz * np.cos(th), wz * np.sin(th)
+
+
+def film_force(grid: Grid, p: np.ndarray, frame: FilmFrame = FilmFrame()) -> np.ndarray:
+    """Dimensionless film force (F_x, F_y) on the rotor in the sleeve frame (scale -(r/L), L/r = 2 L/D)."""
+    wc, ws = _weighted_trig(grid)
+    dp = p - 1.0
+    a, b = float(np.sum(dp * wc)), float(np.sum(dp * ws))  # integrals with cos(theta), sin(theta) of the grid
+    c, s = math.cos(frame.offset), math.sin(frame.offset)
+    sb = frame.sign * b
+    # theta_s = sign theta + offset: cos(theta_s) = c cos(theta) - s sign sin(theta), sin(theta_s) = s cos + c sign sin
+    return np.array([c * a - s * sb, s * a + c * sb])
 
 
 def attitude_deg(displacement: np.ndarray, force: np.ndarray) -> float:

@@ -61,6 +61,16 @@ class Operator:
                             sweeps, symmetric)
 
 
+def _next(a: np.ndarray) -> np.ndarray:
+    """Value at i + 1 (periodic in xi)."""
+    return np.concatenate([a[:, 1:], a[:, :1]], axis=1)
+
+
+def _previous(a: np.ndarray) -> np.ndarray:
+    """Value at i - 1 (periodic in xi)."""
+    return np.concatenate([a[:, -1:], a[:, :-1]], axis=1)
+
+
 def inject(fine: np.ndarray) -> np.ndarray:
     """Coarse-node values taken from the coincident fine nodes."""
     return fine[0::2, 0::2].copy()
@@ -68,10 +78,11 @@ def inject(fine: np.ndarray) -> np.ndarray:
 
 def restrict_full_weighting(fine: np.ndarray) -> np.ndarray:
     """Full weighting (1/16 [1 2 1; 2 4 2; 1 2 1]) of a node field, periodic in xi, mirrored at the mid-plane."""
-    rows = 0.25 * (np.roll(fine, 1, axis=1) + 2.0 * fine + np.roll(fine, -1, axis=1))
+    rows = 0.25 * (_previous(fine) + 2.0 * fine + _next(fine))
+    rows = rows[:, 0::2]
     above = np.concatenate([rows[1:], rows[-2:-1]], axis=0)
     below = np.concatenate([rows[:1], rows[:-1]], axis=0)
-    return (0.25 * (below + 2.0 * rows + above))[0::2, 0::2].copy()
+    return (0.25 * (below + 2.0 * rows + above))[0::2].copy()
 
 
 def prolong(coarse: np.ndarray) -> np.ndarray:
@@ -79,6 +90,6 @@ def prolong(coarse: np.ndarray) -> np.ndarray:
     ny, nx = coarse.shape
     fine = np.empty((2 * (ny - 1) + 1, 2 * nx))
     fine[0::2, 0::2] = coarse
-    fine[0::2, 1::2] = 0.5 * (coarse + np.roll(coarse, -1, axis=1))
+    fine[0::2, 1::2] = 0.5 * (coarse + _next(coarse))
     fine[1::2, :] = 0.5 * (fine[0:-1:2, :] + fine[2::2, :])
     return fine

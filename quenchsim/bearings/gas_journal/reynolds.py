@@ -6,8 +6,8 @@ from typing import Literal
 
 import numpy as np
 
-from quenchsim.bearings.gas_journal.film import FilmFrame, exact_coefficients, node_mass
-from quenchsim.bearings.gas_journal.geometry import Bearing, Grid, coarsen_cells, groove_depth_cells
+from quenchsim.bearings.gas_journal.film import FilmFrame, film_hierarchy
+from quenchsim.bearings.gas_journal.geometry import Bearing, Grid
 from quenchsim.bearings.gas_journal.multigrid import FASMultigrid
 from quenchsim.bearings.gas_journal.operator import Operator
 from quenchsim.bearings.gas_journal.solvers import TOLERANCE, SolveResult, newton_direct, relaxation_solve
@@ -32,21 +32,17 @@ def operator_hierarchy(bearing: Bearing, grid: Grid, bearing_number: float, disp
     mass_factor multiplies the control-volume film volume into sigma (2 Lambda / dT for
     Crank-Nicolson, 0 for a steady film). Coarse grids carry the area-averaged groove depth.
     """
-    depth = groove_depth_cells(grid, bearing.grooves)
     ops = []
-    while True:
-        coef = exact_coefficients(grid, depth, displacement, frame)
-        sigma = mass_factor * node_mass(grid, depth, displacement, frame) if mass_factor else np.zeros(grid.shape)
-        ops.append(Operator(grid, coef, bearing_number, sigma))
-        if not grid.can_coarsen():
-            return ops
-        grid = grid.coarsen()
-        depth = coarsen_cells(depth)
+    for geo in film_hierarchy(grid, bearing.grooves):
+        coef = geo.coefficients(displacement, frame)
+        sigma = mass_factor * geo.volume(displacement, frame) if mass_factor else np.zeros(geo.grid.shape)
+        ops.append(Operator(geo.grid, coef, bearing_number, sigma))
+    return ops
 
 
 def film_volume(bearing: Bearing, grid: Grid, displacement: tuple[float, float], frame: FilmFrame) -> np.ndarray:
     """Film volume V_p of every control volume (for the time derivative)."""
-    return node_mass(grid, groove_depth_cells(grid, bearing.grooves), displacement, frame)
+    return film_hierarchy(grid, bearing.grooves)[0].volume(displacement, frame)
 
 
 def solve(ops: list[Operator], method: str = "multigrid", p0: np.ndarray | None = None,

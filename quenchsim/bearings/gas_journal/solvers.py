@@ -7,6 +7,7 @@ and the same stopping rule ||R||_2 <= tol on the grid solved.
 from __future__ import annotations
 
 import time
+from functools import lru_cache
 from dataclasses import dataclass
 
 import numpy as np
@@ -57,6 +58,11 @@ def relaxation_solve(op: Operator, p0: np.ndarray, f: np.ndarray, omega: float =
     return SolveResult(p, sweeps, res, float(sweeps), time.perf_counter() - start, res <= tol, history)
 
 
+@lru_cache(maxsize=16)
+def _pattern(shape: tuple[int, int]) -> "_Pattern":
+    return _Pattern(shape)
+
+
 class _Pattern:
     """Sparsity pattern of the cell-local 4x4 Jacobians restricted to the unknowns (rows 1..n_eta)."""
 
@@ -83,7 +89,7 @@ def newton_direct(op: Operator, p0: np.ndarray, f: np.ndarray, tol: float = TOLE
     """Newton's method with the exact cell Jacobian (upwind weights frozen per step), SuperLU solves
     and step halving while ||R||_2 does not decrease."""
     start = time.perf_counter()
-    pattern = _Pattern(op.grid.shape)
+    pattern = _pattern(op.grid.shape)
     local = np.empty(op.coef.shape[:2] + (4, 4))
     p = p0.copy()
     op.update_weights(p)

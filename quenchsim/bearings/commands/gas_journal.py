@@ -1,0 +1,113 @@
+"""`quenchsim bearings gas-journal static | orbit | stability | bench`: gas journal bearings.
+
+Parses arguments and calls quenchsim.bearings.gas_journal; returns one JSON-serialisable dict.
+"""
+
+from __future__ import annotations
+
+import argparse
+import pathlib
+
+from quenchsim.bearings.gas_journal.benchmark import run_benchmark, sor_factor, warm_up
+from quenchsim.bearings.gas_journal.geometry import Bearing, Grooves
+from quenchsim.bearings.gas_journal.orbit import mass_from_parameter, orbit
+from quenchsim.bearings.gas_journal.reynolds import METHODS
+from quenchsim.bearings.gas_journal.stability import critical_mass_parameter
+from quenchsim.bearings.gas_journal.static import static_characteristics
+from quenchsim.errors import InputError, require
+
+ACTIONS = ("static", "orbit", "stability", "bench")
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("action", choices=ACTIONS, help="static characteristics, orbit, stability threshold "
+                        "or solver benchmark")
+    parser.add_argument("--bearing-number", type=float, nargs="+", required=True,
+                        help="Lambda = 6 mu omega r^2 / (pa c^2) (bench: several)")
+    parser.add_argument("--eccentricity", type=float, help="static: eccentricity ratio e / c")
+    parser.add_argument("--displacement-angle", type=float, default=-90.0,
+                        help="static: direction of the rotor displacement, deg (default -90)")
+    parser.add_argument("--ld", type=float, default=1.0, help="length-to-diameter ratio L/D (default 1)")
+    parser.add_argument("--grooves", type=int, help="number of herringbone grooves (omit: plain bearing)")
+    parser.add_argument("--groove-angle", type=float, default=30.0, help="groove angle, deg (default 30)")
+    parser.add_argument("--groove-depth", type=float, default=1.0, help="groove depth / clearance (default 1)")
+    parser.add_argument("--groove-width-ratio", type=float, default=0.5, help="groove / (groove + ridge) width")
+    parser.add_argument("--groove-length-ratio", type=float, default=0.5, help="grooved / bearing length")
+    parser.add_argument("--grooved", choices=("sleeve", "rotor"), default="sleeve", help="grooved member")
+    parser.add_argument("--level", type=int, default=None,
+                        help="grid level m: (10 2^(m-1)+1) x (2 2^(m-1)+1) nodes (default: static 5, orbit 3)")
+    parser.add_argument("--method", choices=METHODS, default="multigrid", help="static: solver")
+    parser.add_argument("--sor-omega", type=float, help="static --method sor: over-relaxation factor")
+    parser.add_argument("--load", type=float, help="orbit: load W / (pa L D) (downward)")
+    mass = parser.add_mutually_exclusive_group()
+    mass.add_argument("--mass", type=float, help="orbit: M = m c omega^2 / (8 pa L r)")
+    mass.add_argument("--mass-parameter", type=float, help="orbit: Mbar = m pa c^5 / (2 mu^2 L r^5)")
+    parser.add_argument("--duration", type=float, default=None, help="orbit/stability: T = omega t / 2 span")
+    parser.add_argument("--start-eccentricity", type=float, default=0.1, help="stability: release eccentricity")
+    parser.add_argument("--orbit-csv", default="gas_journal_orbit.csv", help="orbit: CSV output path")
+    parser.add_argument("--levels", type=int, nargs="+", default=[3, 4, 5, 6], help="bench: grid levels")
+    parser.add_argument("--methods", choices=METHODS, nargs="+", default=list(METHODS), help="bench: methods")
+    parser.add_argument("--budget", type=float, default=60.0,
+                        help="bench: seconds per Gauss-Seidel/SOR run before extrapolation")
+
+
+def _bearing(args: argparse.Namespace) -> Bearing:
+    if args.grooves is None:
+        return Bearing(args.ld)
+    return Bearing(args.ld, Grooves(args.grooves, args.groove_angle, args.groove_depth, args.groove_width_ratio,
+                                    args.groove_length_ratio, args.grooved))
+
+
+def _single(args: argparse.Namespace) -> float:
+    require(len(args.bearing_number) == 1, "--bearing-number", args.bearing_number,
+            f"{args.action} takes exactly one value")
+    return args.bearing_number[0]
+
+
+def _static(args: argparse.Namespace) -> dict:
+    if args.eccentricity is None:
+        raise InputError("--eccentricity", None, "required for static")
+    lam = _single(args)
+    level = args.level or 5
+    omega = args.sor_omega if args.sor_omega is not None else sor_factor(level, lam)
+    jit = warm_up()
+    res = static_characteristics(_bearing(args), lam, args.eccentricity, args.displacement_angle, level,
+                                 args.method, sor_omega=omega)
+    return {"load": res.load, "attitude_deg": res.attitude_deg, "grid": [res.grid.n_xi + 1, res.grid.n_eta + 1],
+            "iterations": res.iterations, "residual": res.residual, "wall_time_s": res.wall_time_s,
+            "jit_warm_up_s": jit}
+
+
+def _orbit(args: argparse.Namespace) -> dict:
+    lam = _single(args)
+    if args.load is None:
+        raise InputError("--load", None, "required for orbit (W / (pa L D))")
+    if args.mass is None and args.mass_parameter is None:
+        raise InputError("--mass", None, "give --mass M or --mass-parameter MBAR")
+    if args.mass is not None:
+        mass = args.mass
+    else:
+        require(args.mass_parameter > 0.0, "--mass-parameter", args.mass_parameter, "must be > 0")
+        mass = mass_from_parameter(args.mass_parameter, lam)
+    res = orbit(_bearing(args), lam, args.load, mass, level=args.level or 3, duration=args.duration or 100.0)
+    path = pathlib.Path(args.orbit_csv)
+    res.to_csv(path)
+    return {"eccentricity": res.eccentricity, "attitude_deg": res.attitude_deg, "stable": bool(res.stable),
+            "settled": bool(res.settled), "whirl_ratio": res.whirl_ratio, "orbit_csv": str(path)}
+
+
+def _stability(args: argparse.Namespace) -> dict:
+    res = critical_mass_parameter(_bearing(args), _single(args), level=args.level or 3,
+                                  start_eccentricity=args.start_eccentricity, duration=args.duration or 40.0)
+    return {"critical_mass_parameter": res.critical_mass_parameter, "stable_below": res.stable_below,
+            "unstable_above": res.unstable_above, "whirl_ratio": res.whirl_ratio, "orbits": len(res.trials)}
+
+
+def _bench(args: argparse.Namespace) -> dict:
+    for lam in args.bearing_number:
+        require(lam >= 0.0, "--bearing-number", lam, "must be >= 0")
+    return run_benchmark(args.levels, args.bearing_number, args.methods, args.budget)
+
+
+def run(args: argparse.Namespace) -> dict:
+    return {"static": _static, "orbit": _orbit, "stability": _stability, "bench": _bench}[args.action](args)

@@ -1,0 +1,61 @@
+"""CLI of the gas journal bearing module: JSON keys, bad input -> exit 2."""
+
+import json
+
+import pytest
+
+from quenchsim.cli import main
+
+
+def _run(capsys, *argv):
+    code = main(["bearings", "gas-journal", *argv, "--json"])
+    out = capsys.readouterr()
+    return code, out
+
+
+def test_static_json(capsys):
+    code, out = _run(capsys, "static", "--bearing-number", "3", "--eccentricity", "0.6", "--level", "4")
+    assert code == 0
+    data = json.loads(out.out)
+    assert set(data) >= {"load", "attitude_deg", "grid", "iterations", "residual", "wall_time_s"}
+    assert data["grid"] == [81, 17]
+    assert data["load"] == pytest.approx(0.720, rel=0.02)
+    assert data["residual"] <= 1e-5
+
+
+def test_static_grooved_direct_matches_multigrid(capsys):
+    args = ["static", "--bearing-number", "10", "--eccentricity", "0.5", "--grooves", "5", "--level", "3"]
+    _, mg = _run(capsys, *args)
+    _, direct = _run(capsys, *args, "--method", "direct")
+    assert json.loads(mg.out)["load"] == pytest.approx(json.loads(direct.out)["load"], rel=1e-4)
+
+
+def test_bench_json(capsys):
+    code, out = _run(capsys, "bench", "--levels", "2", "3", "--bearing-number", "1", "100", "--budget", "2")
+    assert code == 0
+    rows = json.loads(out.out)["results"]
+    assert len(rows) == 2 * 2 * 4
+    for row in rows:
+        assert set(row) >= {"method", "level", "bearing_number", "nodes", "iterations", "wall_time_s"}
+        assert row["converged"] or row["extrapolated"]
+    assert {r["nodes"] for r in rows} == {21 * 5, 41 * 9}
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["static", "--bearing-number", "3", "--eccentricity", "1.0"],
+        ["static", "--bearing-number", "-1", "--eccentricity", "0.5"],
+        ["static", "--bearing-number", "3", "--eccentricity", "0.5", "--grooves", "5", "--groove-width-ratio", "0"],
+        ["static", "--bearing-number", "3", "--eccentricity", "0.5", "--grooves", "5", "--groove-length-ratio", "1.2"],
+        ["static", "--bearing-number", "3", "4", "--eccentricity", "0.5"],
+        ["static", "--bearing-number", "3"],
+        ["orbit", "--bearing-number", "3", "--load", "0.7"],
+        ["orbit", "--bearing-number", "3", "--load", "0.7", "--mass-parameter", "-1"],
+        ["stability", "--bearing-number", "-2"],
+    ],
+)
+def test_bad_input_exit_2(capsys, argv):
+    code, out = _run(capsys, *argv)
+    assert code == 2
+    assert out.err.startswith("quenchsim: error:") and out.err.count("\n") == 1
