@@ -1,0 +1,157 @@
+"""The plots of the run/sweep report, each returned as PNG bytes (matplotlib, Agg backend).
+
+Sections are drawn in the r-z plane in mm (the VTK files hold x = r, y = z in metres).
+"""
+
+from __future__ import annotations
+
+import io
+import itertools
+from typing import Any
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.tri import Triangulation  # noqa: E402
+
+from quenchsim.report.report_data import Frame  # noqa: E402
+
+DISTORTION_SCALE = 10.0
+"""Displacements are drawn magnified by this factor over the pre-quench outline."""
+DPI = 100
+
+
+def _png(fig: Any) -> bytes:
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=DPI)
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def cooling_curves(time_s: np.ndarray, temperatures_C: dict[str, np.ndarray], title: str) -> bytes:
+    """Temperature against time at every probe, linear and logarithmic time axes side by side."""
+    fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.2))
+    t = np.asarray(time_s)
+    for name, T in temperatures_C.items():
+        axes[0].plot(t, T, label=name)
+        axes[1].plot(np.where(t > 0, t, np.nan), T, label=name)
+    axes[1].set_xscale("log")
+    for ax in axes:
+        ax.set_xlabel("time (s)")
+        ax.set_ylabel("temperature (C)")
+        ax.grid(True, which="both", lw=0.3)
+    axes[0].legend(fontsize=8)
+    fig.suptitle(f"Cooling curves at the probes: {title}")
+    fig.tight_layout()
+    return _png(fig)
+
+
+def field_maps(frame: Frame, fields: list[tuple[str, str, str, float | None, float | None]], title: str) -> bytes:
+    """One tripcolor map per ``(point-data name, label, colormap, vmin, vmax)`` of the last frame."""
+    tri = Triangulation(frame.points[:, 0] * 1e3, frame.points[:, 1] * 1e3, frame.triangles)
+    width = np.ptp(tri.x) or 1.0
+    height = np.ptp(tri.y) or 1.0
+    panel_w = 2.6
+    panel_h = float(np.clip(panel_w * height / width, 2.5, 7.5))
+    fig, axes = plt.subplots(1, len(fields), figsize=(panel_w * len(fields) + 0.6, panel_h + 1.2), squeeze=False)
+    for ax, (name, label, cmap, vmin, vmax) in zip(axes[0], fields):
+        values = frame.point_data[name]
+        pc = ax.tripcolor(tri, values, shading="gouraud", cmap=cmap, vmin=vmin, vmax=vmax)
+        ax.set_aspect("equal")
+        ax.set_title(label, fontsize=9)
+        ax.set_xlabel("r (mm)", fontsize=8)
+        ax.tick_params(labelsize=7)
+        fig.colorbar(pc, ax=ax, shrink=0.8)
+    axes[0][0].set_ylabel("z (mm)", fontsize=8)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    return _png(fig)
+
+
+def hardness_traverse(depth_mm: np.ndarray, curves: dict[str, np.ndarray], threshold_HRC: float | None,
+                      title: str) -> bytes:
+    """HRC against depth below the surface at mid-width, one curve per surface."""
+    fig, ax = plt.subplots(figsize=(7.0, 4.2))
+    for label, hrc in curves.items():
+        ax.plot(depth_mm, hrc, label=label)
+    if threshold_HRC is not None:
+        ax.axhline(threshold_HRC, color="k", lw=0.8, ls="--", label=f"{threshold_HRC:g} HRC")
+    ax.set_xlabel("depth below the surface at mid-width (mm)")
+    ax.set_ylabel("hardness (HRC)")
+    ax.set_title(f"Hardness-depth traverse: {title}", fontsize=10)
+    ax.grid(True, lw=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return _png(fig)
+
+
+def distortion(r_before_mm: np.ndarray, z_before_mm: np.ndarray, r_after_mm: np.ndarray, z_after_mm: np.ndarray,
+               title: str, source: str) -> bytes:
+    """The pre-quench section outline and the after-quench outline with the displacement x10."""
+    def closed(a: np.ndarray) -> np.ndarray:
+        return np.append(a, a[:1])
+
+    r_mag = r_before_mm + DISTORTION_SCALE * (r_after_mm - r_before_mm)
+    z_mag = z_before_mm + DISTORTION_SCALE * (z_after_mm - z_before_mm)
+    height = np.ptp(z_before_mm) or 1.0
+    width = np.ptp(r_before_mm) or 1.0
+    fig, ax = plt.subplots(figsize=(5.5, float(np.clip(4.5 * height / width, 3.5, 8.0))))
+    ax.plot(closed(r_before_mm), closed(z_before_mm), "k-", lw=1.0, label="before quench")
+    ax.plot(closed(r_mag), closed(z_mag), "r-", lw=1.4, label=f"after quench, displacement x{DISTORTION_SCALE:g}")
+    ax.set_aspect("equal")
+    ax.set_xlabel("r (mm)")
+    ax.set_ylabel("z (mm)")
+    ax.set_title(f"Distortion: {title}\n({source})", fontsize=9)
+    ax.grid(True, lw=0.3)
+    ax.legend(fontsize=8, loc="best")
+    fig.tight_layout()
+    return _png(fig)
+
+
+def stress_traverse(r_mm: np.ndarray, curves: dict[str, np.ndarray], title: str) -> bytes:
+    """Residual stress against radius at mid-width (MPa)."""
+    fig, ax = plt.subplots(figsize=(7.0, 4.2))
+    for label, values in curves.items():
+        ax.plot(r_mm, values, label=label)
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.set_xlabel("r (mm), bore to OD at mid-width")
+    ax.set_ylabel("residual stress (MPa)")
+    ax.set_title(f"Residual stress traverse: {title}", fontsize=10)
+    ax.grid(True, lw=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return _png(fig)
+
+
+def responses(rows: list[dict[str, Any]], x: str, group_by: list[str], outputs: list[str], title: str) -> bytes:
+    """Each output against swept input ``x``; one line per combination of the other swept inputs."""
+    n = len(outputs)
+    ncol = min(3, n)
+    nrow = -(-n // ncol)
+    fig, axes = plt.subplots(nrow, ncol, figsize=(4.2 * ncol, 3.3 * nrow), squeeze=False)
+    groups = sorted({tuple(r.get(g) for g in group_by) for r in rows}, key=lambda k: tuple(map(str, k)))
+    markers = itertools.cycle("os^vD<>")
+    styles = {g: next(markers) for g in groups}
+    for ax, out in zip(axes.ravel(), outputs):
+        for g in groups:
+            pts = sorted((r[x], r[out]) for r in rows
+                         if tuple(r.get(k) for k in group_by) == g and isinstance(r.get(x), (int, float))
+                         and isinstance(r.get(out), (int, float)))
+            if not pts:
+                continue
+            label = ", ".join(f"{k.split('.')[-1]}={v:g}" if isinstance(v, float) else f"{k.split('.')[-1]}={v}"
+                              for k, v in zip(group_by, g)) or None
+            ax.plot(*zip(*pts), marker=styles[g], label=label)
+        ax.set_xlabel(x.split(".")[-1], fontsize=8)
+        ax.set_title(out, fontsize=8)
+        ax.tick_params(labelsize=7)
+        ax.grid(True, lw=0.3)
+    for ax in axes.ravel()[n:]:
+        ax.set_visible(False)
+    if group_by:
+        axes[0][0].legend(fontsize=7)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    return _png(fig)
