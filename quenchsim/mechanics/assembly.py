@@ -12,7 +12,7 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import Basis, ElementTriP2, ElementVector, MeshTri
 
-from quenchsim.mechanics.constitutive import SQRT2
+from quenchsim.mechanics.constitutive import M_VEC, SQRT2, PointUpdate
 
 INTORDER = 4
 """Quadrature order shared with the thermal/metallurgy basis ``Basis(mesh, ElementTriP2(), intorder=4)``."""
@@ -39,6 +39,11 @@ class AxisymmetricAssembler:
             B[:, :, 2, j] = val[0] / self.radius
             B[:, :, 3, j] = (grad[0, 1] + grad[1, 0]) / SQRT2
         self.B = B
+        B_vol = B[:, :, 0] + B[:, :, 1] + B[:, :, 2]  # m^T B, (ne, nq, 12)
+        B_dev = B - B_vol[:, :, None, :] / 3.0 * M_VEC[None, None, :, None]
+        # flattened (ne, nq, 144) kernels b_v b_v^T and B^T P B: an element matrix is a batched GEMV
+        self.vol_kernel = (B_vol[:, :, :, None] * B_vol[:, :, None, :]).reshape(ne, nq, -1)
+        self.dev_kernel = np.einsum("eqai,eqaj->eqij", B_dev, B_dev, optimize=True).reshape(ne, nq, -1)
         rows = np.repeat(self.element_dofs[:, :, None], n_local, axis=2)
         cols = np.repeat(self.element_dofs[:, None, :], n_local, axis=1)
         keys = (rows.astype(np.int64) * self.n_dofs + cols).ravel()
@@ -60,10 +65,20 @@ class AxisymmetricAssembler:
         return (np.bincount(dofs, weights=fe.ravel(), minlength=self.n_dofs),
                 np.bincount(dofs, weights=np.abs(fe).ravel(), minlength=self.n_dofs))
 
-    def stiffness(self, tangent: np.ndarray) -> sp.csr_matrix:
-        """K = int B^T D B r dA on the fixed pattern."""
-        DB = np.einsum("eqab,eqbj,eq->eqaj", tangent, self.B, self.weights, optimize=True)
-        Ke = np.einsum("eqai,eqaj->eij", self.B, DB, optimize=True)
+    def stiffness(self, update: PointUpdate) -> sp.csr_matrix:
+        """K = int B^T D B r dA on the fixed pattern, with the factored consistent tangent
+        D = K m m + 2 mu [beta P + (c - beta) n n] (so B^T D B = K b_v b_v + 2 mu beta B^T P B
+        + 2 mu (c - beta) b_n b_n with b_v = m^T B, b_n = n^T B)."""
+        w = self.weights
+        ne, n_local = self.element_dofs.shape
+        Ke = (np.matmul((update.bulk * w)[:, None, :], self.vol_kernel)
+              + np.matmul((2.0 * update.shear * update.beta * w)[:, None, :], self.dev_kernel)).reshape(ne, n_local, n_local)
+        soft = update.c != update.beta
+        if soft.any():
+            e = np.flatnonzero(soft.any(axis=1))
+            Bn = np.einsum("eqa,eqaj->eqj", update.normal[e], self.B[e], optimize=True)
+            Ke[e] += np.einsum("eq,eqi,eqj->eij", (2.0 * update.shear * (update.c - update.beta) * w)[e], Bn, Bn,
+                               optimize=True)
         data = np.bincount(self._scatter, weights=Ke.ravel(), minlength=self.nnz)
         return sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n_dofs, self.n_dofs))
 

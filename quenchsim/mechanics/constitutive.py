@@ -54,13 +54,27 @@ def von_mises(stress: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class PointUpdate:
-    """Result of :func:`return_map` (arrays over points)."""
+    """Result of :func:`return_map` (arrays over points).  The consistent tangent is
+    D = K m (x) m + 2 mu [beta P + (c - beta) n (x) n]; it is kept in this factored form so that the
+    assembly never forms 4 x 4 matrices (:attr:`tangent` builds them, for checks)."""
 
     stress: np.ndarray            # (..., 4) Mandel stress at the end of the step
-    tangent: np.ndarray           # (..., 4, 4) consistent tangent d sigma / d eps
+    bulk: np.ndarray              # (...) K
+    shear: np.ndarray             # (...) mu
+    beta: np.ndarray              # (...) q / q_trial
+    c: np.ndarray                 # (...) dq / dq_trial
+    normal: np.ndarray            # (..., 4) unit trial deviator n
     d_plastic_strain: np.ndarray  # (..., 4) Mandel plastic strain increment
     d_trip_strain: np.ndarray     # (..., 4) Mandel TRIP strain increment
     d_eq_plastic: np.ndarray      # (...) equivalent plastic strain increment dp >= 0
+
+    @property
+    def tangent(self) -> np.ndarray:
+        """(..., 4, 4) consistent tangent d sigma / d eps."""
+        n = self.normal
+        return (self.bulk[..., None, None] * np.outer(M_VEC, M_VEC)
+                + 2.0 * self.shear[..., None, None] * (self.beta[..., None, None] * P_DEV
+                                                       + (self.c - self.beta)[..., None, None] * n[..., :, None] * n[..., None, :]))
 
 
 def return_map(elastic_trial_strain: np.ndarray, bulk_Pa: np.ndarray, shear_Pa: np.ndarray,
@@ -72,32 +86,29 @@ def return_map(elastic_trial_strain: np.ndarray, bulk_Pa: np.ndarray, shear_Pa: 
     ``d_trip_Phi_1_Pa`` the TRIP driving increment dPhi >= 0 in 1/Pa (None: no TRIP).
     """
     eps = elastic_trial_strain
-    vol = eps @ M_VEC
+    vol = eps[..., 0] + eps[..., 1] + eps[..., 2]
     e_dev = eps - (vol / 3.0)[..., None] * M_VEC
-    s_trial = 2.0 * shear_Pa[..., None] * e_dev
-    norm_trial = np.sqrt(np.einsum("...i,...i->...", s_trial, s_trial))
+    norm_dev = np.sqrt(np.einsum("...i,...i->...", e_dev, e_dev))
+    norm_trial = 2.0 * shear_Pa * norm_dev
     q_trial = np.sqrt(1.5) * norm_trial
-    a = np.zeros_like(q_trial) if d_trip_Phi_1_Pa is None else 3.0 * shear_Pa * d_trip_Phi_1_Pa
-    beta = 1.0 / (1.0 + a)
-    c = beta.copy()
+    n = e_dev / np.where(norm_dev > 0.0, norm_dev, 1.0)[..., None]
+    a = 0.0 if d_trip_Phi_1_Pa is None else 3.0 * shear_Pa * d_trip_Phi_1_Pa
+    beta = np.broadcast_to(1.0 / (1.0 + a), q_trial.shape)
+    c = beta
     dp = np.zeros_like(q_trial)
     if yield_Pa is not None:
         plastic = q_trial * beta > yield_Pa * (1.0 + YIELD_TOLERANCE)
-        H = hardening_Pa
-        denom = 3.0 * shear_Pa + (1.0 + a) * H
-        dp = np.where(plastic, (q_trial - (1.0 + a) * yield_Pa) / denom, 0.0)
-        q = yield_Pa + H * dp
-        beta = np.where(plastic, q / np.where(plastic, q_trial, 1.0), beta)
-        c = np.where(plastic, H / denom, c)
-    s = beta[..., None] * s_trial
-    stress = (bulk_Pa * vol)[..., None] * M_VEC + s
-    n = s_trial / np.where(norm_trial > 0.0, norm_trial, 1.0)[..., None]
-    tangent = ((bulk_Pa[..., None, None] * np.outer(M_VEC, M_VEC))
-               + 2.0 * shear_Pa[..., None, None] * (beta[..., None, None] * P_DEV
-                                                    + (c - beta)[..., None, None] * n[..., :, None] * n[..., None, :]))
-    q_new = np.sqrt(1.5) * beta * norm_trial
-    flow = 1.5 * s / np.where(q_new > 0.0, q_new, 1.0)[..., None]
-    d_plastic = dp[..., None] * flow
-    d_trip = (np.zeros_like(s) if d_trip_Phi_1_Pa is None else 1.5 * d_trip_Phi_1_Pa[..., None] * s)
-    return PointUpdate(stress=stress, tangent=tangent, d_plastic_strain=d_plastic, d_trip_strain=d_trip,
-                       d_eq_plastic=dp)
+        if plastic.any():
+            H = hardening_Pa
+            denom = 3.0 * shear_Pa + (1.0 + a) * H
+            dp = np.where(plastic, (q_trial - (1.0 + a) * yield_Pa) / denom, 0.0)
+            q = yield_Pa + H * dp
+            beta = np.where(plastic, q / np.where(plastic, q_trial, 1.0), beta)
+            c = np.where(plastic, H / denom, c)
+    s_norm = beta * norm_trial  # |s| at the end of the step
+    stress = (bulk_Pa * vol)[..., None] * M_VEC + s_norm[..., None] * n
+    d_plastic = (np.sqrt(1.5) * dp)[..., None] * n  # 3/2 dp s/q, |s|/q = sqrt(2/3)
+    d_trip = (np.zeros_like(n) if d_trip_Phi_1_Pa is None else (1.5 * d_trip_Phi_1_Pa * s_norm)[..., None] * n)
+    return PointUpdate(stress=stress, bulk=np.broadcast_to(bulk_Pa, q_trial.shape),
+                       shear=np.broadcast_to(shear_Pa, q_trial.shape), beta=np.asarray(beta), c=np.asarray(c),
+                       normal=n, d_plastic_strain=d_plastic, d_trip_strain=d_trip, d_eq_plastic=dp)

@@ -27,6 +27,12 @@ from quenchsim.mechanics.assembly import INTORDER, AxisymmetricAssembler
 from quenchsim.mechanics.constitutive import M_VEC, SQRT2, lame_bulk_shear, return_map, von_mises
 from quenchsim.mechanics.model import MechanicsModel, free_strain, free_strain_increment, trip_saturation
 
+LINEAR_RTOL = 1e-10
+"""Relative residual of the linear solves of a linear (elastic/TRIP) step."""
+FORCING_MAX = 1e-2
+"""Largest relative residual of a linear solve inside a plastic Newton iteration (inexact Newton)."""
+LINE_SEARCH_CUTS = 4
+"""Newton steps are halved up to this many times until the residual norm decreases."""
 AXIS_TOLERANCE = 1e-9
 """Nodes with r below this fraction of the section size count as lying on the axis."""
 
@@ -41,6 +47,53 @@ class StepInfo:
     plastic_points: int
     max_d_eq_plastic: float
     residual_history_N: tuple[float, ...] = ()
+
+
+class _LinearSolver:
+    """Solves K x = b to a relative residual ``rtol``: conjugate gradients preconditioned by the LU
+    factorisation of an earlier tangent (the tangent changes slowly between Newton iterations and
+    steps), refactorising when CG needs more than ``max_cg`` iterations, and at the next solve when it
+    needed more than ``refresh_after``.  K is symmetric positive
+    definite (associative J2 flow, H >= 0, rigid modes removed), so CG applies."""
+
+    def __init__(self, max_cg: int = 20, refresh_after: int = 8) -> None:
+        self.max_cg = max_cg
+        self.refresh_after = refresh_after
+        self._stale = True
+        self._lu = None
+        self.factorizations = 0
+        self.cg_iterations = 0
+
+    def solve(self, K: sp.csr_matrix, b: np.ndarray, rtol: float) -> np.ndarray:
+        if not self._stale:
+            x = self._pcg(K, b, rtol)
+            if x is not None:
+                return x
+        self._lu = spla.splu(K.tocsc(), permc_spec="MMD_AT_PLUS_A")
+        self._stale = False
+        self.factorizations += 1
+        return self._lu.solve(b)
+
+    def _pcg(self, K: sp.csr_matrix, b: np.ndarray, rtol: float) -> np.ndarray | None:
+        x = np.zeros_like(b)
+        r = b.copy()
+        target = rtol * np.linalg.norm(b)
+        z = self._lu.solve(r)
+        p = z.copy()
+        rz = r @ z
+        for it in range(self.max_cg):
+            self._stale = it >= self.refresh_after  # the next solve refactorises
+            Kp = K @ p
+            step = rz / (p @ Kp)
+            x += step * p
+            r -= step * Kp
+            self.cg_iterations += 1
+            if np.linalg.norm(r) <= target:
+                return x
+            z = self._lu.solve(r)
+            rz, rz_old = r @ z, rz
+            p = z + (rz / rz_old) * p
+        return None
 
 
 @dataclass
@@ -73,6 +126,7 @@ class MechanicsSolver:
         self.fixed_dofs = self._constraints(fixed_point, dirichlet or {})
         self._zero_pos, self._diag_pos = self.asm.constrained_pattern(self.fixed_dofs)
         self._projector = self._vertex_projector()
+        self.linear_solver = _LinearSolver()
 
     # ------------------------------------------------------------------ setup
     def _constraints(self, fixed_point: tuple[float, float] | None, dirichlet: Mapping[str, np.ndarray]) -> np.ndarray:
@@ -145,31 +199,46 @@ class MechanicsSolver:
                     trip_saturation(model.trip_law, X1[phase]) - trip_saturation(model.trip_law, X0[phase]), 0.0)
 
         f_ext = np.zeros(asm.n_dofs) if external_force_N is None else np.asarray(external_force_N, dtype=float)
-        u = self.displacement_m.copy()
         base = free1[..., None] * M_VEC + st.plastic + st.trip
-        residual_norm, reference = np.inf, np.linalg.norm(f_ext)
-        history: list[float] = []
-        for iteration in range(model.max_newton_iterations + 1):
+
+        def evaluate(u: np.ndarray):
             update = return_map(asm.strain(u) - base, bulk, shear, yield_now, hardening, d_phi)
             f_int, f_abs = asm.internal_force(update.stress)
             residual = f_int - f_ext
             residual[self.fixed_dofs] = 0.0
-            residual_norm = float(np.linalg.norm(residual))
-            history.append(residual_norm)
-            if iteration == 0:
-                reference = max(reference, residual_norm)
-            tolerance = model.newton_rtol * reference + 1e-12 * float(np.linalg.norm(f_abs))
-            if residual_norm <= tolerance:
+            return update, residual, float(np.linalg.norm(residual)), float(np.linalg.norm(f_abs))
+
+        u = self.displacement_m.copy()
+        update, residual, norm, f_abs = evaluate(u)
+        reference = max(float(np.linalg.norm(f_ext)), norm)
+        history = [norm]
+        for iteration in range(model.max_newton_iterations + 1):
+            if norm <= model.newton_rtol * reference + 1e-12 * f_abs:
                 self._commit(u, free1, update, eq_plastic)
-                return StepInfo(True, iteration, residual_norm, int(np.count_nonzero(update.d_eq_plastic)),
+                return StepInfo(True, iteration, norm, int(np.count_nonzero(update.d_eq_plastic)),
                                 float(update.d_eq_plastic.max(initial=0.0)), tuple(history))
-            if iteration == model.max_newton_iterations or not np.isfinite(residual_norm):
+            if iteration == model.max_newton_iterations or not np.isfinite(norm):
                 break
-            K = asm.stiffness(update.tangent)
+            K = asm.stiffness(update)
             K.data[self._zero_pos] = 0.0
             K.data[self._diag_pos] = 1.0
-            u = u - spla.spsolve(K.tocsc(), residual)
-        return StepInfo(False, model.max_newton_iterations, residual_norm, 0, 0.0, tuple(history))
+            if yield_now is None:  # linear step: one accurate solve
+                eta = LINEAR_RTOL
+            else:  # inexact Newton, Eisenstat & Walker (SIAM J. Sci. Comput. 17 (1996) 16) choice 2
+                eta = FORCING_MAX if iteration == 0 else 0.9 * (norm / history[-2]) ** 2
+                eta = min(max(eta, 0.1 * model.newton_rtol * reference / norm, LINEAR_RTOL), FORCING_MAX)
+            du = -self.linear_solver.solve(K, residual, eta)
+            best = None
+            for cut in range(LINE_SEARCH_CUTS + 1):  # backtrack until the residual decreases
+                trial = evaluate(u + 0.5**cut * du)
+                if best is None or trial[2] < best[1][2]:
+                    best = (0.5**cut, trial)
+                if trial[2] < norm:
+                    break
+            u = u + best[0] * du
+            update, residual, norm, f_abs = best[1]
+            history.append(norm)
+        return StepInfo(False, model.max_newton_iterations, norm, 0, 0.0, tuple(history))
 
     def _commit(self, u: np.ndarray, free1: np.ndarray, update, eq_plastic: np.ndarray) -> None:
         st = self._state
