@@ -9,10 +9,12 @@ produced; a run that fails keeps them and records where it stopped in ``summary.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import logging
 import math
 import time
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -80,23 +82,13 @@ def boundary_points(fe: AxisymmetricP2, section: SectionMesh) -> BoundaryPoints:
             radius = math.dist(seg.center, seg.start)
             s_seg = radius * np.abs((a - a0 + np.pi) % (2 * np.pi) - np.pi)
         # a name may cover several segments (e.g. chamfers): keep the nearest segment's values
-        near = np.hypot(*_distance_to_segment(seg, r[idx], z[idx])) < 1e-9 + 1e-6 * seg.length()
+        near = seg.distance(r[idx], z[idx]) < 1e-9 + 1e-6 * seg.length()
         s[idx[near]] = s_seg[near]
         length[idx[near]] = seg.length()
     r0, r1, z0, z1 = section.profile.bounds()
     return BoundaryPoints(r_m=r, z_m=z, normal_r=fe.facet_normals[0].ravel(), normal_z=fe.facet_normals[1].ravel(),
                           segment=segment, s_m=s, segment_length_m=length,
                           extent=SectionExtent(r_min_m=r0, r_max_m=r1, z_min_m=z0, z_max_m=z1))
-
-
-def _distance_to_segment(seg: Any, r: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    if seg.center is None:
-        d = np.subtract(seg.end, seg.start)
-        t = np.clip(((r - seg.start[0]) * d[0] + (z - seg.start[1]) * d[1]) / (d @ d), 0.0, 1.0)
-        return r - (seg.start[0] + t * d[0]), z - (seg.start[1] + t * d[1])
-    radius = math.dist(seg.center, seg.start)
-    rho = np.hypot(r - seg.center[0], z - seg.center[1])
-    return rho - radius, np.zeros_like(rho)
 
 
 def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
@@ -141,15 +133,26 @@ class QuenchRun:
                                     msh_path=self.out / "mesh.msh")
         self.mech_model = None
         self.before_mesh = self.section.mesh
-        mech_options = {k: v for k, v in case.get("mechanics", {}).items() if k != "enabled"}
+        reference_state = case.get("geometry.reference_state", "annealed")
+        if reference_state not in ("annealed", "austenitised"):
+            raise InputError("geometry.reference_state", reference_state, "must be 'annealed' or 'austenitised'")
+        mech_options = {k: v for k, v in case.get("mechanics", {}).items() if k not in ("enabled", "fixed_point_mm")}
+        self.case_to_hot = 1.0
         if case.get("mechanics.enabled", True) and "mechanics" in self.material:
             self.mech_model = mechanics.load_mechanics(self.material, {**mech_options, "austenitizing_T_C": self.T_aust})
-            # the case gives the room-temperature annealed ("before") section; the stress-free start is the
-            # austenitised section, larger by the free strain between the two states
+            # the stress-free start is the austenitised section; the "before" section is the room-temperature
+            # annealed one, smaller by the free strain between the two states. The case file gives one of them.
             scale = mechanics.austenitized_scale(self.mech_model)
-            self.profile = self.profile_before.scaled(scale)
-            self.section = SectionMesh(mesh=skfem.MeshTri(self.before_mesh.p * scale, self.before_mesh.t),
-                                       boundaries=self.section.boundaries, profile=self.profile)
+            mesh = self.section.mesh
+            if reference_state == "annealed":
+                self.case_to_hot = scale
+                self.profile = self.profile_before.scaled(scale)
+                hot = skfem.MeshTri(mesh.p * scale, mesh.t)
+            else:
+                self.profile, hot = self.profile_before, mesh
+                self.profile_before = self.profile.scaled(1.0 / scale)
+                self.before_mesh = skfem.MeshTri(mesh.p / scale, mesh.t)
+            self.section = SectionMesh(mesh=hot, boundaries=self.section.boundaries, profile=self.profile)
         cooled = np.concatenate([f for n, f in self.section.boundaries.items() if n != "axis"])
         self.fe = AxisymmetricP2(self.section.mesh, cooled, intorder=INTORDER)
         self.points = boundary_points(self.fe, self.section)
@@ -158,21 +161,25 @@ class QuenchRun:
         self.thermal = ThermalSolver(self.fe, thermal_properties(self.material), self.T_aust, self.phase_model,
                                      metallurgy.initial_state(self.fe.r_qp.shape, self.kin))
         self.projection = NodalProjection(self.section.mesh, INTORDER)
-        self.mech = mechanics.MechanicsSolver(self.section.mesh, self.mech_model) if self.mech_model else None
+        fixed = case.get("mechanics.fixed_point_mm")
+        if fixed is not None and not (isinstance(fixed, list) and len(fixed) == 2):
+            raise InputError("mechanics.fixed_point_mm", fixed, "must be [r, z] in mm (case geometry)")
+        fixed_m = None if fixed is None else (fixed[0] * MM * self.case_to_hot, fixed[1] * MM * self.case_to_hot)
+        self.mech = mechanics.MechanicsSolver(self.section.mesh, self.mech_model, fixed_m) if self.mech_model else None
         self._setup_probes()
+        self.timings: dict[str, float] = {}
 
     def _setup_probes(self) -> None:
         probes = self.case.get("probes", [])
         self.probe_names = [p["name"] for p in probes]
-        before = self.profile_before
+        given = self.profile if self.case_to_hot == 1.0 else self.profile_before
         pts = np.array([[p["r_mm"] * MM, p["z_mm"] * MM] for p in probes]).reshape(-1, 2)
         for i, (r, z) in enumerate(pts):
-            if not before.contains(r, z) and np.min(np.hypot(*_nearest(before, r, z))) > 1e-9:
+            if not given.contains(r, z) and given.distance(r, z) > 1e-9:
                 raise InputError(f"probes[{i}]", f"{self.probe_names[i]} at ({r / MM:g}, {z / MM:g}) mm",
                                  "lies outside the section")
-        # probe positions are given on the "before" section; they move with the austenitised geometry
-        scale = self.section.mesh.p[0].max() / self.before_mesh.p[0].max()
-        self.probe_matrix = self.fe.basis.probes(pts.T * scale) if len(pts) else None
+        # probe positions are given on the case's section; they move with it to the austenitised geometry
+        self.probe_matrix = self.fe.basis.probes(pts.T * self.case_to_hot) if len(pts) else None
 
     def probe_temperatures(self) -> np.ndarray:
         return self.probe_matrix @ self.thermal.T if self.probe_matrix is not None else np.zeros(0)
@@ -207,7 +214,8 @@ class QuenchRun:
         stages = [("quench", case.number("quench.time_s")), ("air", case.number("air.time_s", positive=True))]
         try:
             for stage, duration in stages:
-                htc = stage_htc(case, stage, self.points)
+                with self.timer("bath_htc_s"):
+                    htc = stage_htc(case, stage, self.points)
                 t_end = self.thermal.time_s + duration
                 until = case.number("air.until_max_C") if stage == "air" else -math.inf
                 bar = tqdm(total=round(duration, 3), desc=f"{case.name}[{case.condition}] {stage}", unit="s",
@@ -215,7 +223,8 @@ class QuenchRun:
                 while self.thermal.time_s < t_end - 1e-9 and float(np.max(self.thermal.T)) > until:
                     dt = min(dt, t_end - self.thermal.time_s)
                     try:
-                        step = self.thermal.try_step(dt, htc)
+                        with self.timer("thermal_metallurgy_s"):
+                            step = self.thermal.try_step(dt, htc)
                     except SolverError as exc:
                         if dt / 2 < float(ctl["dt_min_s"]):
                             raise
@@ -226,7 +235,9 @@ class QuenchRun:
                     if limit > 2.0 and dt / 2 >= float(ctl["dt_min_s"]):
                         dt, rejected = dt / 2, rejected + 1
                         continue
-                    if not self._mechanics_step(step.T_qp, step.phase_state.fractions):
+                    with self.timer("mechanics_s"):
+                        converged = self._mechanics_step(step.T_qp, step.phase_state.fractions)
+                    if not converged:
                         if dt / 2 < float(ctl["dt_min_s"]):
                             raise SolverError(f"the stress solver did not converge at t = {self.thermal.time_s:.4g} s "
                                               f"even with the smallest step {dt:.3g} s")
@@ -242,7 +253,8 @@ class QuenchRun:
                     probe_rows.append(self.probe_temperatures())
                     probes.write(self.thermal.time_s, probe_rows[-1])
                     if float(np.max(np.abs(self.thermal.T - self._last_frame_T))) >= frame_dT:
-                        vtk.write(self.thermal.time_s, self.nodal_fields())
+                        with self.timer("output_s"):
+                            vtk.write(self.thermal.time_s, self.nodal_fields())
                         self._last_frame_T = self.thermal.T.copy()
                     bar.update(round(step.dt_s, 3))
                     grow = float(ctl["growth"]) if limit < 1e-12 else min(float(ctl["growth"]), 0.9 / limit)
@@ -257,7 +269,12 @@ class QuenchRun:
         vtk.write(self.thermal.time_s, self.nodal_fields())
         time_arr = np.asarray(times)
         probe_T = {n: np.array([row[i] for row in probe_rows]) for i, n in enumerate(self.probe_names)}
-        summary = self.summary(time_arr, probe_T, wall0, steps, rejected, energy_out, latent)
+        try:
+            summary = self.summary(time_arr, probe_T, wall0, steps, rejected, energy_out, latent)
+        except Exception as exc:  # keep what was computed: record the failure, then re-raise
+            (out / "summary.json").write_text(json.dumps({"case": case.name, "condition": case.condition,
+                                                          "status": "failed", "error": f"post-processing: {exc!r}"}))
+            raise
         summary["status"] = status
         if error:
             summary["error"] = error
@@ -266,6 +283,15 @@ class QuenchRun:
         if error:
             raise SolverError(f"{error} (results up to t = {self.thermal.time_s:.4g} s are in {out})")
         return RunResult(out, summary, time_arr, probe_T)
+
+    @contextlib.contextmanager
+    def timer(self, key: str) -> Iterator[None]:
+        """Accumulate the wall time of a block into ``self.timings[key]`` (reported in summary.json)."""
+        t0 = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.timings[key] = self.timings.get(key, 0.0) + time.perf_counter() - t0
 
     def _mechanics_step(self, T_qp: np.ndarray, fractions: dict[str, np.ndarray]) -> bool:
         if self.mech is None:
@@ -344,9 +370,9 @@ class QuenchRun:
         for seg in self.profile.segments:
             if seg.name == "axis" or seg.name.startswith(("chamfer", "radius")):
                 continue
-            mid = seg.points(3)[1]
-            inward = np.array([r0 + r1, z0 + z1]) / 2 - mid
-            pt = mid + 1e-6 * inward / np.linalg.norm(inward)
+            a, mid, b = seg.points(3)
+            tangent = (b - a) / np.linalg.norm(b - a)
+            pt = mid + 1e-6 * np.array([-tangent[1], tangent[0]])   # left of a counter-clockwise outline = inside
             surface[f"{seg.name}_mid"] = float((p1.probes(pt.reshape(2, 1)) @ hrc)[0])
         core_r = 0.5 * (_surface_r_at(self.profile, z_mid, True) + _surface_r_at(self.profile, z_mid, False))
         core = float((p1.probes(np.array([[core_r], [z_mid]])) @ hrc)[0])
@@ -356,7 +382,7 @@ class QuenchRun:
         if self.mech is not None:
             out.update(self.mechanics_summary())
         out["energy"] = {"heat_extracted_J": energy_out, "latent_released_J": latent}
-        out["solver"] = {"wall_time_s": time.perf_counter() - wall0, "steps": steps, "rejected_steps": rejected,
+        out["solver"] = {"wall_time_s": time.perf_counter() - wall0, "stage_time_s": dict(self.timings), "steps": steps, "rejected_steps": rejected,
                          "dofs": int(self.fe.n_dofs), "elements": int(self.section.n_elements),
                          "end_time_s": float(self.thermal.time_s)}
         return out
@@ -365,11 +391,6 @@ class QuenchRun:
 def _t_between(time_s: np.ndarray, T: np.ndarray, upper: float, lower: float) -> float | None:
     a, b = time_to_temperature(time_s, T, upper), time_to_temperature(time_s, T, lower)
     return None if a is None or b is None else b - a
-
-
-def _nearest(profile: Profile, r: float, z: float) -> tuple[np.ndarray, np.ndarray]:
-    poly = profile.polygon(256)
-    return poly[:, 0] - r, poly[:, 1] - z
 
 
 def _surface_r_at(profile: Profile, z: float, inner: bool) -> float:

@@ -40,6 +40,24 @@ class Segment:
         a1 = math.atan2(self.end[1] - self.center[1], self.end[0] - self.center[0])
         return (a1 - a0 + math.pi) % (2 * math.pi) - math.pi
 
+    def distance(self, r: np.ndarray, z: np.ndarray) -> np.ndarray:
+        """Shortest distance from points (r, z) to this segment."""
+        r, z = np.asarray(r, dtype=float), np.asarray(z, dtype=float)
+        if self.center is None:
+            d = np.subtract(self.end, self.start)
+            t = np.clip(((r - self.start[0]) * d[0] + (z - self.start[1]) * d[1]) / (d @ d), 0.0, 1.0)
+            return np.hypot(r - (self.start[0] + t * d[0]), z - (self.start[1] + t * d[1]))
+        # arc: distance to the circle where the point's angle lies within the sweep, else to the ends
+        c = self.center
+        radius = math.dist(c, self.start)
+        a0 = math.atan2(self.start[1] - c[1], self.start[0] - c[0])
+        rel = (np.arctan2(z - c[1], r - c[0]) - a0) % (2 * math.pi)
+        sweep = self.sweep()
+        within = (rel <= sweep) if sweep >= 0 else (rel >= 2 * math.pi + sweep)
+        to_circle = np.abs(np.hypot(r - c[0], z - c[1]) - radius)
+        to_ends = np.minimum(np.hypot(r - self.start[0], z - self.start[1]), np.hypot(r - self.end[0], z - self.end[1]))
+        return np.where(within, to_circle, to_ends)
+
     def points(self, n: int) -> np.ndarray:
         """``n`` points along the segment, shape (n, 2), including both ends."""
         t = np.linspace(0.0, 1.0, n)
@@ -79,6 +97,10 @@ class Profile:
         x2, y2 = np.roll(x, -1), np.roll(y, -1)
         crosses = ((y > z) != (y2 > z)) & (r < (x2 - x) * (z - y) / np.where(y2 == y, 1e-300, y2 - y) + x)
         return bool(np.count_nonzero(crosses) % 2)
+
+    def distance(self, r: float, z: float) -> float:
+        """Distance from (r, z) to the outline."""
+        return float(min(np.min(s.distance(r, z)) for s in self.segments))
 
     def bounds(self) -> tuple[float, float, float, float]:
         p = self.polygon(256)
