@@ -101,6 +101,10 @@ class Case:
             node = node[key]
         return node
 
+    def resolved(self) -> dict[str, Any]:
+        """The fully resolved inputs as written to a run's case.toml."""
+        return {"name": self.name, "condition": self.condition or "", **self.data}
+
     def number(self, dotted: str, **kw: Any) -> float:
         table, _, key = dotted.rpartition(".")
         return _number(self.get(table, {}) if table else self.data, key, dotted, **kw)

@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 import skfem
+import tomli_w
 from tqdm import tqdm
 
 from quenchsim import mechanics, metallurgy
@@ -122,6 +123,7 @@ class QuenchRun:
         self.case = case
         self.out = Path(out_dir)
         self.out.mkdir(parents=True, exist_ok=True)
+        (self.out / "case.toml").write_text(tomli_w.dumps(case.resolved()))
         self.progress = progress
         self.material = load_material(str(case.data["material"]))
         self.T_aust = case.number("process.austenitising_temperature_C")

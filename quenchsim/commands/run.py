@@ -7,8 +7,6 @@ import json
 import logging
 from pathlib import Path
 
-import tomli_w
-
 from quenchsim.case import load_case
 from quenchsim.errors import InputError
 
@@ -51,9 +49,6 @@ def run(args: argparse.Namespace) -> int:
         case.data["mesh"]["size_mm"] = args.mesh_size
         case.data["mesh"]["surface_size_mm"] = case.number("mesh.surface_size_mm") * scale
     out = args.out or Path("runs") / f"{case.name}_{case.condition or 'base'}"
-    out.mkdir(parents=True, exist_ok=True)
-    resolved = {"name": case.name, "condition": case.condition or "", **case.data}
-    (out / "case.toml").write_text(tomli_w.dumps(resolved))
     logging.basicConfig(level=logging.WARNING, format="quenchsim: %(message)s")
     result = run_case(case, out, progress=not args.quiet)
     s = result.summary
