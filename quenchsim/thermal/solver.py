@@ -133,8 +133,10 @@ class ThermalSolver:
             if not np.all(np.isfinite(T_next)):
                 raise SolverError(f"thermal step of {dt_s:g} s at t = {self.time_s:g} s produced non-finite temperatures")
             change = float(np.max(np.abs(T_next - T_iter)))
+            step_change = float(np.max(np.abs(T_next - self.T)))
             T_iter = T_next
-            if change < self.picard_tol_K:
+            # converged when the last correction is below the tolerance or 0.5 % of the step's change
+            if change < max(self.picard_tol_K, 5e-3 * step_change):
                 break
         else:
             raise SolverError(f"thermal Picard iteration did not converge in {self.max_iterations} iterations "
