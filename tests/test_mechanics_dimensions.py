@@ -53,3 +53,20 @@ def test_nodal_fields_shapes_and_projection():
         assert fields[key].shape == (mesh.p.shape[1],)
     ne, nq = solver.asm.radius.shape
     assert np.allclose(solver.project_to_vertices(np.full((ne, nq), 3.5)), 3.5)
+
+
+def test_sample_reproduces_the_lame_stresses_inside_the_wall():
+    from quenchsim.mechanics.loads import surface_load
+    a, b, h, p = 0.1, 0.2, 0.1, 100e6
+    mesh = v.tube_mesh(a, b, h, 8)
+    model = load_mechanics(v.uniform_material(2e11, 0.3), {"plasticity": False, "trip": False})
+    solver = MechanicsSolver(mesh, model, fixed_point=(a, 0.0))
+    T, X = v.uniform_fields(solver, v.T_REF_C)
+    facets = mesh.facets_satisfying(lambda x: np.isclose(x[0], a))
+    assert solver.step(T, X, T, X, external_force_N=surface_load(mesh, facets, pressure_Pa=p)).converged
+    r = np.linspace(0.12, 0.18, 5)
+    got = solver.sample(np.vstack([r, np.full_like(r, 0.05)]))
+    exact = v.lame_exact(r, a, b, p, 2e11, 0.3)
+    np.testing.assert_allclose(got["tt"], exact["tt"], rtol=0.01)
+    np.testing.assert_allclose(got["rr"], exact["rr"], atol=0.01 * p)
+    np.testing.assert_allclose(got["u_r"], exact["u_r"], rtol=1e-3)

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
-from skfem import Basis, ElementTriP1, MeshTri
+from skfem import Basis, ElementTriP1, ElementTriP2, MeshTri
 
 from quenchsim.errors import InputError
 from quenchsim.materials import PHASES
@@ -151,19 +151,20 @@ class MechanicsSolver:
             fixed.append(2 * np.asarray(nodes, dtype=int) + (comp == "z"))
         return np.unique(np.concatenate(fixed))
 
-    def _vertex_projector(self) -> sp.csr_matrix:
-        """Lumped L2 projection of quadrature values onto the mesh vertices (P1)."""
-        p1 = Basis(self.mesh, ElementTriP1(), intorder=INTORDER)
+    def _vertex_projector(self):
+        """L2 projection (area weighted) of quadrature values onto the P1 vertex field: the matrix of
+        int phi_i f dA and the factorised P1 mass matrix."""
+        p1 = self._p1 = Basis(self.mesh, ElementTriP1(), intorder=INTORDER)
         ne, nq = self.asm.radius.shape
-        rows, vals = [], []
-        for j in range(3):
-            rows.append(np.repeat(p1.element_dofs[j][:, None], nq, axis=1))
-            vals.append(np.asarray(p1.basis[j][0]) * p1.dx)
-        rows = np.stack(rows).ravel()
-        vals = np.stack(vals).ravel()
-        cols = np.tile(np.arange(ne * nq), 3)
-        P = sp.csr_matrix((vals, (rows, cols)), shape=(self.mesh.p.shape[1], ne * nq))
-        return sp.diags(1.0 / np.asarray(P.sum(axis=1)).ravel()) @ P
+        phi = np.stack([np.asarray(p1.basis[j][0]) for j in range(3)])  # (3, ne, nq)
+        rows = np.repeat(p1.element_dofs[:, :, None], nq, axis=2).ravel()
+        cols = np.tile(np.arange(ne * nq).reshape(ne, nq), (3, 1, 1)).ravel()
+        load = sp.csr_matrix(((phi * p1.dx).ravel(), (rows, cols)), shape=(self.mesh.p.shape[1], ne * nq))
+        mass = np.einsum("ieq,jeq,eq->eij", phi, phi, p1.dx)
+        r_idx = np.repeat(p1.element_dofs.T[:, :, None], 3, axis=2).ravel()
+        c_idx = np.repeat(p1.element_dofs.T[:, None, :], 3, axis=1).ravel()
+        M = sp.csc_matrix((mass.ravel(), (r_idx, c_idx)), shape=(self.mesh.p.shape[1],) * 2)
+        return load, spla.splu(M)
 
     # ------------------------------------------------------------------ stepping
     def step(self, T_C: np.ndarray, fractions: Mapping[str, np.ndarray], T_prev_C: np.ndarray,
@@ -271,12 +272,26 @@ class MechanicsSolver:
         return out
 
     def project_to_vertices(self, values: np.ndarray) -> np.ndarray:
-        """Lumped L2 projection of a quadrature field (ne, nq) onto the mesh vertices."""
-        return self._projector @ np.asarray(values).ravel()
+        """L2 projection of a quadrature field (ne, nq) onto the mesh vertices (P1)."""
+        load, mass = self._projector
+        return mass.solve(load @ np.asarray(values, dtype=float).ravel())
 
     def vertex_displacement(self) -> np.ndarray:
         """Displacement (n_vertices, 2) of the mesh vertices."""
         return self.displacement_m[self.basis.nodal_dofs].T
+
+    def sample(self, points_m: np.ndarray) -> dict[str, np.ndarray]:
+        """Stress components (rr, zz, tt, rz, von_mises; Pa) and the displacement (u_r, u_z; m) at
+        points (2, n) of the hot section (residual-stress probes, hoop traverses), interpolated from
+        the vertex projection (displacement: from the quadratic field)."""
+        probes = self._p1.probes(np.asarray(points_m, dtype=float))
+        fields = self.nodal_fields()
+        out = {comp: probes @ fields[f"stress_{comp}_Pa"] for comp in ("rr", "zz", "tt", "rz")}
+        out["von_mises"] = probes @ fields["von_mises_Pa"]
+        quadratic = Basis(self.mesh, ElementTriP2(), intorder=1).probes(np.asarray(points_m, dtype=float))
+        out["u_r"] = quadratic @ self.displacement_m[0::2]  # node k of the vector basis = scalar P2 DOF k
+        out["u_z"] = quadratic @ self.displacement_m[1::2]
+        return out
 
     def nodal_fields(self) -> dict[str, np.ndarray]:
         """Fields on the mesh vertices (``mesh.p`` order) for VTK output: displacement_m (n, 3, with a
