@@ -44,11 +44,70 @@ def _flux(p1, p2, dist, cross, dmain, dcross, conv, w1, length):
     return f, d1, d2, dc
 
 
+@njit(cache=True, inline="always")
+def _face_flux(p1, p2, dist, cross, dmain, dcross, conv, w1, length):
+    return (-0.5 * (p1 + p2) * (dmain * (p2 - p1) / dist + dcross * cross)
+            + conv * (w1 * p1 + (1.0 - w1) * p2)) * length
+
+
+@njit(cache=True, inline="always")
+def _cell_outflow(pa, pb, pc, pd, cf, w, hx, hy, lam, r):
+    """Outflow contributions r[4] of one cell to its corners (no derivatives)."""
+    ce = (pd + pc - pa - pb) / (2.0 * hy)
+    cx = (pb + pc - pa - pd) / (2.0 * hx)
+    fab = _face_flux(pa, pb, hx, ce, cf[0, 0], cf[0, 1], lam * cf[0, 2], w[0], 0.5 * hy)
+    fdc = _face_flux(pd, pc, hx, ce, cf[1, 0], cf[1, 1], lam * cf[1, 2], w[1], 0.5 * hy)
+    fad = _face_flux(pa, pd, hy, cx, cf[2, 0], cf[2, 1], lam * cf[2, 2], w[2], 0.5 * hx)
+    fbc = _face_flux(pb, pc, hy, cx, cf[3, 0], cf[3, 1], lam * cf[3, 2], w[3], 0.5 * hx)
+    r[0] = fab + fad
+    r[1] = -fab + fbc
+    r[2] = -fdc - fbc
+    r[3] = fdc - fad
+
+
+@njit(cache=True, inline="always")
+def _cell_top(pa, pb, pc, pd, cf, w, hx, hy, lam):
+    """Outflows of one cell at its top corners c, d and their derivatives with respect to P_c, P_d:
+    (r_c, r_d, dr_c/dP_c, dr_c/dP_d, dr_d/dP_c, dr_d/dP_d)."""
+    ce = (pd + pc - pa - pb) / (2.0 * hy)
+    cx = (pb + pc - pa - pd) / (2.0 * hx)
+    ey = 0.5 / hy
+    ex = 0.5 / hx
+    fdc, dc1, dc2, dcc = _flux(pd, pc, hx, ce, cf[1, 0], cf[1, 1], lam * cf[1, 2], w[1], 0.5 * hy)
+    fad, ad1, ad2, adc = _flux(pa, pd, hy, cx, cf[2, 0], cf[2, 1], lam * cf[2, 2], w[2], 0.5 * hx)
+    fbc, bc1, bc2, bcc = _flux(pb, pc, hy, cx, cf[3, 0], cf[3, 1], lam * cf[3, 2], w[3], 0.5 * hx)
+    dc_c = dc2 + dcc * ey
+    dc_d = dc1 + dcc * ey
+    bc_c = bc2 + bcc * ex
+    bc_d = -bcc * ex
+    ad_c = adc * ex
+    ad_d = ad2 - adc * ex
+    return (-fdc - fbc, fdc - fad, -dc_c - bc_c, -dc_d - bc_d, dc_c - ad_c, dc_d - ad_d)
+
+
+@njit(cache=True, inline="always")
+def _cell_bottom(pa, pb, pc, pd, cf, w, hx, hy, lam):
+    """Outflows of one cell at its bottom corners a, b and their derivatives with respect to P_a, P_b:
+    (r_a, r_b, dr_a/dP_a, dr_a/dP_b, dr_b/dP_a, dr_b/dP_b)."""
+    ce = (pd + pc - pa - pb) / (2.0 * hy)
+    cx = (pb + pc - pa - pd) / (2.0 * hx)
+    ey = 0.5 / hy
+    ex = 0.5 / hx
+    fab, ab1, ab2, abc = _flux(pa, pb, hx, ce, cf[0, 0], cf[0, 1], lam * cf[0, 2], w[0], 0.5 * hy)
+    fad, ad1, ad2, adc = _flux(pa, pd, hy, cx, cf[2, 0], cf[2, 1], lam * cf[2, 2], w[2], 0.5 * hx)
+    fbc, bc1, bc2, bcc = _flux(pb, pc, hy, cx, cf[3, 0], cf[3, 1], lam * cf[3, 2], w[3], 0.5 * hx)
+    ab_a = ab1 - abc * ey
+    ab_b = ab2 - abc * ey
+    ad_a = ad1 - adc * ex
+    ad_b = adc * ex
+    bc_a = -bcc * ex
+    bc_b = bc1 + bcc * ex
+    return (fab + fad, -fab + fbc, ab_a + ad_a, ab_b + ad_b, -ab_a + bc_a, -ab_b + bc_b)
+
+
 @njit(cache=True)
-def _cell(pa, pb, pc, pd, cf, w, hx, hy, lam, r, jac, flo):
-    """Outflow contributions r[4] of one cell to its corners a, b, c, d, their 4x4 Jacobian and
-    flo[4], the frozen-coefficient (Picard) diffusive diagonal of each corner, a positive floor for
-    the point-Newton diagonal."""
+def _cell(pa, pb, pc, pd, cf, w, hx, hy, lam, r, jac):
+    """Outflow contributions r[4] of one cell to its corners a, b, c, d and their 4x4 Jacobian."""
     ce = (pd + pc - pa - pb) / (2.0 * hy)
     cx = (pb + pc - pa - pd) / (2.0 * hx)
     ey = 0.5 / hy
@@ -57,14 +116,6 @@ def _cell(pa, pb, pc, pd, cf, w, hx, hy, lam, r, jac, flo):
     fdc, dc1, dc2, dcc = _flux(pd, pc, hx, ce, cf[1, 0], cf[1, 1], lam * cf[1, 2], w[1], 0.5 * hy)
     fad, ad1, ad2, adc = _flux(pa, pd, hy, cx, cf[2, 0], cf[2, 1], lam * cf[2, 2], w[2], 0.5 * hx)
     fbc, bc1, bc2, bcc = _flux(pb, pc, hy, cx, cf[3, 0], cf[3, 1], lam * cf[3, 2], w[3], 0.5 * hx)
-    kab = 0.25 * (pa + pb) * cf[0, 0] * hy / hx
-    kdc = 0.25 * (pd + pc) * cf[1, 0] * hy / hx
-    kad = 0.25 * (pa + pd) * cf[2, 0] * hx / hy
-    kbc = 0.25 * (pb + pc) * cf[3, 0] * hx / hy
-    flo[0] = kab + kad
-    flo[1] = kab + kbc
-    flo[2] = kdc + kbc
-    flo[3] = kdc + kad
     r[0] = fab + fad
     r[1] = -fab + fbc
     r[2] = -fdc - fbc
@@ -109,15 +160,13 @@ def apply_operator(p, coef, w, sigma, hx, hy, lam, out):
     """out = L(P) at every node (row 0 included, unused)."""
     ny, nx = p.shape
     r = np.empty(4)
-    jac = np.empty((4, 4))
-    flo = np.empty(4)
     for j in range(ny):
         for i in range(nx):
             out[j, i] = sigma[j, i] * p[j, i]
     for j in range(ny - 1):
         for i in range(nx):
             ip = i + 1 if i + 1 < nx else 0
-            _cell(p[j, i], p[j, ip], p[j + 1, ip], p[j + 1, i], coef[j, i], w[j, i], hx, hy, lam, r, jac, flo)
+            _cell_outflow(p[j, i], p[j, ip], p[j + 1, ip], p[j + 1, i], coef[j, i], w[j, i], hx, hy, lam, r)
             out[j, i] += r[0]
             out[j, ip] += r[1]
             out[j + 1, ip] += r[2]
@@ -128,47 +177,56 @@ def apply_operator(p, coef, w, sigma, hx, hy, lam, out):
 def relax(p, f, coef, w, sigma, hx, hy, lam, omega, sweeps):
     """Point Gauss-Seidel-Newton sweeps, P_p <- P_p + omega (f_p - L_p(P)) / max(dL_p / dP_p, floor_p).
 
-    omega = 1: the multigrid smoother and plain Gauss-Seidel; omega > 1: SOR. Lexicographic order,
-    downstream (increasing xi) inner loop; |dP| <= MAX_POINT_CHANGE * P per update.
+    omega = 1: Gauss-Seidel (and the optional point smoother of the multigrid); omega > 1: SOR.
+    Lexicographic order, downstream (increasing xi) inner loop; |dP| <= MAX_POINT_CHANGE * P per
+    update. floor_p is the frozen-coefficient diffusive diagonal (keeps the step bounded where the
+    Newton diagonal is small). Uses the cell functions of the line smoother (_cell_top, _cell_bottom).
     """
     ny, nx = p.shape
-    r = np.empty(4)
-    jac = np.empty((4, 4))
-    flo = np.empty(4)
+    rx = 0.25 * hy / hx
+    ry = 0.25 * hx / hy
     for _ in range(sweeps):
         for j in range(1, ny):
             for i in range(nx):
                 im = i - 1 if i > 0 else nx - 1
                 ip = i + 1 if i + 1 < nx else 0
-                lp = sigma[j, i] * p[j, i]
+                pc = p[j, i]
+                lp = sigma[j, i] * pc
                 dl = sigma[j, i]
-                floor = sigma[j, i]
                 # cell (j-1, i-1): node is corner c
-                _cell(p[j - 1, im], p[j - 1, i], p[j, i], p[j, im], coef[j - 1, im], w[j - 1, im], hx, hy, lam, r, jac, flo)
-                lp += r[2]
-                dl += jac[2, 2]
-                floor += flo[2]
+                cf = coef[j - 1, im]
+                pa, pb, pd = p[j - 1, im], p[j - 1, i], p[j, im]
+                r_c, r_d, j_cc, j_cd, j_dc, j_dd = _cell_top(pa, pb, pc, pd, cf, w[j - 1, im], hx, hy, lam)
+                lp += r_c
+                dl += j_cc
+                floor = (pd + pc) * cf[1, 0] * rx + (pb + pc) * cf[3, 0] * ry
                 # cell (j-1, i): node is corner d
-                _cell(p[j - 1, i], p[j - 1, ip], p[j, ip], p[j, i], coef[j - 1, i], w[j - 1, i], hx, hy, lam, r, jac, flo)
-                lp += r[3]
-                dl += jac[3, 3]
-                floor += flo[3]
+                cf = coef[j - 1, i]
+                pa, pb, pcc = p[j - 1, i], p[j - 1, ip], p[j, ip]
+                r_c, r_d, j_cc, j_cd, j_dc, j_dd = _cell_top(pa, pb, pcc, pc, cf, w[j - 1, i], hx, hy, lam)
+                lp += r_d
+                dl += j_dd
+                floor += (pc + pcc) * cf[1, 0] * rx + (pa + pc) * cf[2, 0] * ry
                 if j < ny - 1:
                     # cell (j, i-1): node is corner b
-                    _cell(p[j, im], p[j, i], p[j + 1, i], p[j + 1, im], coef[j, im], w[j, im], hx, hy, lam, r, jac, flo)
-                    lp += r[1]
-                    dl += jac[1, 1]
-                    floor += flo[1]
+                    cf = coef[j, im]
+                    pa, pcc, pd = p[j, im], p[j + 1, i], p[j + 1, im]
+                    r_a, r_b, j_aa, j_ab, j_ba, j_bb = _cell_bottom(pa, pc, pcc, pd, cf, w[j, im], hx, hy, lam)
+                    lp += r_b
+                    dl += j_bb
+                    floor += (pa + pc) * cf[0, 0] * rx + (pc + pcc) * cf[3, 0] * ry
                     # cell (j, i): node is corner a
-                    _cell(p[j, i], p[j, ip], p[j + 1, ip], p[j + 1, i], coef[j, i], w[j, i], hx, hy, lam, r, jac, flo)
-                    lp += r[0]
-                    dl += jac[0, 0]
-                    floor += flo[0]
-                step = omega * (f[j, i] - lp) / max(dl, floor)
+                    cf = coef[j, i]
+                    pb, pcc, pd = p[j, ip], p[j + 1, ip], p[j + 1, i]
+                    r_a, r_b, j_aa, j_ab, j_ba, j_bb = _cell_bottom(pc, pb, pcc, pd, cf, w[j, i], hx, hy, lam)
+                    lp += r_a
+                    dl += j_aa
+                    floor += (pc + pb) * cf[0, 0] * rx + (pc + pd) * cf[2, 0] * ry
+                step = omega * (f[j, i] - lp) / max(dl, floor + sigma[j, i])
                 if not np.isfinite(step):
                     step = 0.0
-                limit = MAX_POINT_CHANGE * p[j, i]
-                p[j, i] += min(max(step, -limit), limit)
+                limit = MAX_POINT_CHANGE * pc
+                p[j, i] = pc + min(max(step, -limit), limit)
 
 
 @njit(cache=True)
@@ -176,11 +234,10 @@ def jacobian_values(p, coef, w, hx, hy, lam, out):
     """Local 4x4 Jacobians of every cell, out shape (n_eta, n_xi, 4, 4) (rows: corners a, b, c, d)."""
     ny, nx = p.shape
     r = np.empty(4)
-    flo = np.empty(4)
     for j in range(ny - 1):
         for i in range(nx):
             ip = i + 1 if i + 1 < nx else 0
-            _cell(p[j, i], p[j, ip], p[j + 1, ip], p[j + 1, i], coef[j, i], w[j, i], hx, hy, lam, r, out[j, i], flo)
+            _cell(p[j, i], p[j, ip], p[j + 1, ip], p[j + 1, i], coef[j, i], w[j, i], hx, hy, lam, r, out[j, i])
 
 
 @njit(cache=True)
@@ -239,24 +296,19 @@ def _solve_periodic_tridiagonal(lower, diag, upper, rhs, out):
 
 
 @njit(cache=True)
-def relax_lines(p, f, coef, w, sigma, hx, hy, lam, sweeps, symmetric):
+def relax_lines(p, f, coef, w, sigma, hx, hy, lam, sweeps):
     """Circumferential-line Gauss-Seidel-Newton: each row of nodes (constant eta, periodic in xi) takes
     one Newton step of its own equations with the other rows frozen (cyclic tridiagonal solve),
-    rows swept from the ambient end to the mid-plane (``symmetric``: and back, two passes per sweep).
-    Uses the same cell kernel as ``relax``.
+    rows swept from the ambient end to the mid-plane. Same flux formulas as ``relax``.
     The row step is scaled so that no |dP| exceeds MAX_POINT_CHANGE * P."""
     ny, nx = p.shape
-    r = np.empty(4)
-    jac = np.empty((4, 4))
-    flo = np.empty(4)
     res = np.empty(nx)
     dia = np.empty(nx)
     low = np.empty(nx)
     upp = np.empty(nx)
     delta = np.empty(nx)
-    for sweep in range(sweeps * (2 if symmetric else 1)):
-        for jj in range(1, ny):
-            j = jj if sweep % 2 == 0 else ny - jj
+    for _ in range(sweeps):
+        for j in range(1, ny):
             for i in range(nx):
                 res[i] = f[j, i] - sigma[j, i] * p[j, i]
                 dia[i] = sigma[j, i]
@@ -265,22 +317,24 @@ def relax_lines(p, f, coef, w, sigma, hx, hy, lam, sweeps, symmetric):
             for i in range(nx):
                 ip = i + 1 if i + 1 < nx else 0
                 # cell (j-1, i): row nodes are its corners d = (j, i) and c = (j, i+1)
-                _cell(p[j - 1, i], p[j - 1, ip], p[j, ip], p[j, i], coef[j - 1, i], w[j - 1, i], hx, hy, lam, r, jac, flo)
-                res[i] -= r[3]
-                dia[i] += jac[3, 3]
-                upp[i] += jac[3, 2]
-                res[ip] -= r[2]
-                dia[ip] += jac[2, 2]
-                low[ip] += jac[2, 3]
+                rc, rd, jcc, jcd, jdc, jdd = _cell_top(p[j - 1, i], p[j - 1, ip], p[j, ip], p[j, i], coef[j - 1, i],
+                                                       w[j - 1, i], hx, hy, lam)
+                res[i] -= rd
+                dia[i] += jdd
+                upp[i] += jdc
+                res[ip] -= rc
+                dia[ip] += jcc
+                low[ip] += jcd
                 if j < ny - 1:
                     # cell (j, i): row nodes are its corners a = (j, i) and b = (j, i+1)
-                    _cell(p[j, i], p[j, ip], p[j + 1, ip], p[j + 1, i], coef[j, i], w[j, i], hx, hy, lam, r, jac, flo)
-                    res[i] -= r[0]
-                    dia[i] += jac[0, 0]
-                    upp[i] += jac[0, 1]
-                    res[ip] -= r[1]
-                    dia[ip] += jac[1, 1]
-                    low[ip] += jac[1, 0]
+                    ra, rb, jaa, jab, jba, jbb = _cell_bottom(p[j, i], p[j, ip], p[j + 1, ip], p[j + 1, i], coef[j, i],
+                                                              w[j, i], hx, hy, lam)
+                    res[i] -= ra
+                    dia[i] += jaa
+                    upp[i] += jab
+                    res[ip] -= rb
+                    dia[ip] += jbb
+                    low[ip] += jba
             _solve_periodic_tridiagonal(low, dia, upp, res, delta)
             scale = 1.0
             for i in range(nx):

@@ -55,10 +55,10 @@ class Operator:
         kernels.relax(p, f, self.coef, self.w, self.sigma, self.grid.h_xi, self.grid.h_eta, self.lam,
                       omega, sweeps)
 
-    def relax_lines(self, p: np.ndarray, f: np.ndarray, sweeps: int, symmetric: bool = False) -> None:
-        """Circumferential-line Gauss-Seidel-Newton sweeps (``symmetric``: up and down per sweep)."""
+    def relax_lines(self, p: np.ndarray, f: np.ndarray, sweeps: int) -> None:
+        """Circumferential-line Gauss-Seidel-Newton sweeps."""
         kernels.relax_lines(p, f, self.coef, self.w, self.sigma, self.grid.h_xi, self.grid.h_eta, self.lam,
-                            sweeps, symmetric)
+                            sweeps)
 
 
 def _next(a: np.ndarray) -> np.ndarray:

@@ -1,0 +1,70 @@
+"""Orbits (RK45 + Crank-Nicolson film), whirl detection and the stability threshold."""
+
+import numpy as np
+import pytest
+
+from quenchsim.bearings.gas_journal import Bearing, Grooves, static_characteristics
+from quenchsim.bearings.gas_journal.orbit import mass_from_parameter, orbit, whirl_analysis
+from quenchsim.bearings.gas_journal.stability import critical_mass_parameter
+from quenchsim.bearings.gas_journal.transient import CrankNicolsonFilm, FilmState
+from quenchsim.bearings.gas_journal.geometry import grid_for_level
+from quenchsim.errors import InputError
+
+
+def test_whirl_analysis_of_a_synthetic_spiral():
+    t = np.linspace(0.0, 60.0, 6001)
+    sigma, omega = -0.05, 1.0  # decay per unit T; 1 rad per unit T = half the rotor speed
+    r = 0.1 * np.exp(sigma * t)
+    growth, whirl = whirl_analysis(t, 0.2 + r * np.cos(omega * t), -0.3 + r * np.sin(omega * t), (0.2, -0.3))
+    assert growth == pytest.approx(sigma, rel=1e-3)
+    assert whirl == pytest.approx(0.5, rel=1e-3)
+
+
+def test_crank_nicolson_film_relaxes_to_the_steady_solution():
+    bearing = Bearing()
+    grid = grid_for_level(3, bearing)
+    steady = static_characteristics(bearing, 3.0, 0.5, level=3)
+    film = CrankNicolsonFilm(bearing, grid, 3.0)
+    state = FilmState(0.0, steady.displacement, np.ones(grid.shape))
+    for k in range(1, 41):
+        state = film.step(state, 0.25 * k, steady.displacement)
+    np.testing.assert_allclose(state.p, steady.p, atol=1e-4)
+
+
+def test_orbit_settles_at_the_static_equilibrium_of_the_same_grid():
+    lam, load = 3.0, 0.720
+    res = orbit(Bearing(), lam, load, mass_from_parameter(0.5, lam), level=2, duration=80.0,
+                settle_tolerance=1e-5)
+    assert res.settled and res.stable
+    static = static_characteristics(Bearing(), lam, res.eccentricity, np.degrees(np.arctan2(res.y[-1], res.x[-1])),
+                                    level=2)
+    assert static.load == pytest.approx(load, rel=1e-3)
+    assert static.attitude_deg == pytest.approx(res.attitude_deg, abs=0.05)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("lam", "eps", "load", "attitude"),
+                         [(0.6, 0.2, 0.0457, 79.33), (0.6, 0.6, 0.188, 62.09), (3.0, 0.2, 0.176, 47.93),
+                          (3.0, 0.6, 0.720, 30.50), (12.0, 0.2, 0.273, 17.95), (12.0, 0.6, 1.280, 11.58)])
+def test_orbit_recovers_raimondi(lam, eps, load, attitude):
+    res = orbit(Bearing(), lam, load, mass_from_parameter(0.5, lam), level=4, duration=400.0,
+                settle_tolerance=1e-5)
+    assert res.eccentricity == pytest.approx(eps, abs=0.005)
+    assert abs(res.attitude_deg - attitude) < 0.5
+
+
+def test_bad_orbit_inputs():
+    with pytest.raises(InputError, match="mass"):
+        orbit(Bearing(), 3.0, 0.7, -1.0)
+    with pytest.raises(InputError, match="eccentricity"):
+        orbit(Bearing(), 3.0, 0.7, 0.1, start=(1.0, 0.0))
+    with pytest.raises(InputError, match="bearing_number"):
+        critical_mass_parameter(Bearing(), 0.0)
+
+
+@pytest.mark.slow
+def test_grooved_rotor_a1_has_a_stability_threshold():
+    a1 = Bearing(1.0, Grooves(20, 30.0, 1.1, 0.5, 0.5, "rotor"))
+    res = critical_mass_parameter(a1, 1.0, level=3)
+    assert res.stable_below < res.unstable_above
+    assert any(not s for _, s, _, _ in res.trials) and any(s for _, s, _, _ in res.trials)
