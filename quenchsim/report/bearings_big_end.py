@@ -187,8 +187,9 @@ def write(reports_dir: pathlib.Path) -> list[pathlib.Path]:
         "",
         f"## Reference engine, 10 crank revolutions at 7000 rpm ({engine[REFERENCE_SET].clearance.name})",
         "",
-        f"Statistics exclude the first {engine[REFERENCE_SET].transient_revolutions:g} revolution (start from the "
-        "pure-rolling state). Slip ratios relative to pure rolling, reference section 7.",
+        f"Statistics exclude the first {engine[REFERENCE_SET].transient_revolutions:g} revolution (start from "
+        "the pure-rolling state with the outer ring at its quasi-static offset). Slip ratios (reference "
+        "section 7) with absolute cage / orbital speeds; spin slip of the roller relative to its orbit.",
         "",
         "| quantity | this model | paper |",
         "|---|---|---|",
@@ -250,14 +251,16 @@ def write(reports_dir: pathlib.Path) -> list[pathlib.Path]:
         "## Validation rig (Table 1): cage-centre orbits",
         "",
         "Pin centre fixed, inner ring rotating, load and gravity downwards (-X) on the outer ring, cage "
-        "unbalance 13 g mm; orbit of the cage centre relative to the outer ring in the fixed frame.",
+        "unbalance 13 g mm; orbit of the cage centre relative to the outer ring in the fixed frame (first "
+        "revolution excluded). Behaviour: whirl when the cage centre goes round (angle swept >= 360 deg), "
+        "otherwise oscillation on an arc.",
         "",
         "| rig case | revolutions | mean orbit diameter [mm] | guide clearance [mm] | mean e / c | angle swept [deg] "
-        "| net turns | behaviour |",
+        "| net turns of the cage centre | behaviour |",
         "|---|---|---|---|---|---|---|---|",
     ]
     for (x, y, m, name), r in zip(orbits, rig_runs):
-        whirl = m["swept_deg"] > 360.0 and m["mean_ecc_ratio"] > 0.8
+        whirl = m["swept_deg"] >= 360.0
         lines.append(f"| {name} | {r.revolutions:g} | {_fmt(m['orbit_diameter_mm'], 3)} | {_fmt(m['guide_clearance_mm'], 3)}"
                      f" | {_fmt(m['mean_ecc_ratio'])} | {_fmt(m['swept_deg'], 0)} | {_fmt(m['net_turns'], 1)} | "
                      f"{'whirl on the clearance circle' if whirl else 'oscillation on an arc'} |")

@@ -3,7 +3,7 @@
 Layout: [bearing], [masses], [lubrication], [model], [output], [[clearance_set]] and one section per
 operating mode: [engine] (crank-slider + gas force), [static] (constant load, rotating inner ring),
 [rig] (validation rig: pin fixed, outer ring loaded, cage unbalance). A clearance set may override
-the load and speed of the static/rig section (``load_kN``, ``speed_rpm``).
+the load, speed and run length of the static/rig section (``load_kN``, ``speed_rpm``, ``revolutions``).
 """
 
 from __future__ import annotations
@@ -54,6 +54,7 @@ class ClearanceSet:
     radial: float
     load_n: float | None
     speed_rpm: float | None
+    revolutions: float | None
     name: str
 
 
@@ -180,10 +181,12 @@ def _clearance_sets(data: dict[str, Any], bearing: Bearing, model: Model) -> tup
                 bearing.pocket_section_od * 1e3, "must exceed the roller pitch diameter")
         load = s.get("load_kN")
         speed = s.get("speed_rpm")
+        revs = s.get("revolutions")
         out.append(ClearanceSet(
             guide=guide, pocket=pocket, radial=radial,
             load_n=None if load is None else _get(s, sec, "load_kN") * 1e3,
             speed_rpm=None if speed is None else _get(s, sec, "speed_rpm"),
+            revolutions=None if revs is None else _get(s, sec, "revolutions"),
             name=str(s.get("name", f"set {i}: guide {guide * 1e3:.3f} / pocket {pocket * 1e3:.3f} / "
                                    f"radial {radial * 1e3:.3f} mm")),
         ))

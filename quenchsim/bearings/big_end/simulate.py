@@ -1,12 +1,15 @@
 """Set up and integrate one big-end run (engine, static or rig mode) and derive the slip histories.
 
-Slip ratios (reference section 7: C_s = (1 - N_c / N_tc) x 100 %), all speeds relative to the inner
-ring (the rotating frame); pure rolling with the outer ring turning at Omega_o relative to the pin:
-    cage / roller orbit  Omega_th = Omega_o R_o / (R_i + R_o)
+Slip ratios (reference section 7: C_s = (1 - N_c / N_tc) x 100 %, N_c the measured, absolute cage
+speed). With Omega the speeds relative to the inner ring (the rotating frame, itself turning at omega)
+and Omega_o that of the outer ring, pure rolling gives
+    cage / roller orbit  Omega_th = Omega_o R_o / (R_i + R_o)   (relative to the inner ring)
     roller spin about its own axis relative to its orbit
         s_th = Omega_o R_o (R_i + R_o - 2 r) / (2 r (R_i + R_o))   (= Omega_o R_o R_i / (r (R_i + R_o)) at zero clearance)
-    cage slip = 1 - Omega_c / Omega_th,  roller orbital slip = 1 - Omega_orb / Omega_th,
-    roller spin slip = 1 - (Omega_r - Omega_orb) / s_th.
+and the slips are formed with absolute speeds where the reference does:
+    cage slip = 1 - (omega + Omega_c) / (omega + Omega_th),
+    roller orbital slip = 1 - (omega + Omega_orb) / (omega + Omega_th),
+    roller spin slip = 1 - (Omega_r - Omega_orb) / s_th   (a speed difference: frame independent).
 """
 
 from __future__ import annotations
@@ -216,7 +219,8 @@ def simulate(case: BigEndCase, set_number: int, mode: str, revolutions: float | 
     the measured default of the mode)."""
     p, cs, op = build_params(case, set_number, mode)
     method = DEFAULT_INTEGRATOR[mode] if method is None else method
-    revs = op.revolutions if revolutions is None else revolutions
+    revs = op.revolutions if cs.revolutions is None else cs.revolutions
+    revs = revs if revolutions is None else revolutions
     t, y, nfev, wall = integrate(p, revs, case.samples_per_revolution, method)
     n = p.n
     nq = 3 * n + 5
@@ -234,8 +238,8 @@ def simulate(case: BigEndCase, set_number: int, mode: str, revolutions: float | 
     cage = y[nq + 3 * n + 2]
     return RunResult(
         mode=mode, clearance=cs, params=p, t=t, crank_angle=theta, y=y,
-        cage_slip_pct=100.0 * (1.0 - cage / orbit_th),
-        roller_orbital_slip_pct=100.0 * (1.0 - orbit / orbit_th),
+        cage_slip_pct=100.0 * (1.0 - (p.omega + cage) / (p.omega + orbit_th)),
+        roller_orbital_slip_pct=100.0 * (1.0 - (p.omega + orbit) / (p.omega + orbit_th)),
         roller_spin_slip_pct=100.0 * (1.0 - (wr - orbit) / spin_th),
         pocket_force_n=pocket, inner_load_n=q_in, outer_load_n=q_out, revolutions=revs,
         transient_revolutions=min(case.transient_revolutions, 0.5 * revs), wall_time_s=wall,
