@@ -125,7 +125,7 @@ def advance(state: PhaseState, kin: Kinetics, T_old_C: np.ndarray, T_new_C: np.n
                 q[r][sel] = qs[r]
             f = f - consumed
         T_ref = np.minimum(T_min[sel], kin.Ms_C)
-        converted = np.where(Tb < T_ref, f * -np.expm1(-kin.alpha_per_K * (T_ref - Tb)), 0.0)
+        converted = f * -np.expm1(-kin.alpha_per_K * np.maximum(T_ref - Tb, 0.0))
         products["martensite"][sel] += converted
         fA[sel] = f - converted
         T_min[sel] = np.minimum(T_min[sel], Tb)
