@@ -127,6 +127,8 @@ class MechanicsSolver:
         self._zero_pos, self._diag_pos = self.asm.constrained_pattern(self.fixed_dofs)
         self._projector = self._vertex_projector()
         self.linear_solver = _LinearSolver()
+        self._last_increment: np.ndarray | None = None
+        self._last_load = 0.0
 
     # ------------------------------------------------------------------ setup
     def _constraints(self, fixed_point: tuple[float, float] | None, dirichlet: Mapping[str, np.ndarray]) -> np.ndarray:
@@ -211,10 +213,19 @@ class MechanicsSolver:
 
         u = self.displacement_m.copy()
         update, residual, norm, f_abs = evaluate(u)
-        reference = max(float(np.linalg.norm(f_ext)), norm)
+        reference = max(float(np.linalg.norm(f_ext)), norm)  # the step's out-of-balance load
+        load = float(np.sqrt(np.mean((free1 - free0) ** 2)))
+        if self._last_increment is not None and self._last_load > 0.0:
+            # predictor: the last displacement increment scaled by the ratio of free-strain increments
+            guess = u + (load / self._last_load) * self._last_increment
+            candidate = evaluate(guess)
+            if candidate[2] < norm:
+                u = guess
+                update, residual, norm, f_abs = candidate
         history = [norm]
         for iteration in range(model.max_newton_iterations + 1):
             if norm <= model.newton_rtol * reference + 1e-12 * f_abs:
+                self._last_increment, self._last_load = u - self.displacement_m, load
                 self._commit(u, free1, update, eq_plastic)
                 return StepInfo(True, iteration, norm, int(np.count_nonzero(update.d_eq_plastic)),
                                 float(update.d_eq_plastic.max(initial=0.0)), tuple(history))
