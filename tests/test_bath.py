@@ -81,3 +81,13 @@ def test_air_htc_radiation_and_convection():
     assert np.all(h > h_rad) and np.all(h < h_rad + 40.0)  # natural convection in air is 5-25 W/m2K
     with pytest.raises(InputError, match="emissivity"):
         air_htc(pts, 25.0, 1.5)
+
+
+def test_slope_is_the_derivative_of_the_interpolant():
+    htc = boundary_htc(parse_bath(spec()), RING_A)
+    n = len(RING_A)
+    T = np.full(n, 553.3)
+    eps = 1e-4
+    numeric = (htc(T + eps) - htc(T - eps)) / (2 * eps)
+    assert np.allclose(htc.slope(T), numeric, rtol=1e-6, atol=1e-6)
+    assert np.all(htc.slope(np.full(n, 5000.0)) == 0.0)

@@ -13,7 +13,9 @@ Regimes (T_b boiling point, T_L Leidenfrost temperature, T_oil bath temperature)
   forced convection and boiling added (Rohsenow 1952 superposition for subcooled flow boiling), the
   boiling part capped by Zuber's critical flux raised for subcooling (Ivey & Morris 1962). T_peak is
   where the Rohsenow flux meets q_max (closed form, Rohsenow q ~ dT_e^3).
-* Transition boiling, T_peak < T_s < T_L: q falls log-linearly in T_s from q(T_peak) to q_film(T_L).
+* Transition boiling, T_peak < T_s < T_L: q falls log-linearly in T_s from q(T_peak) to q_film(T_L); the
+  region is at least ``transition_min_width_K`` wide (T_peak <= T_L - width), as measured still-oil curves
+  climb from the film level to the peak over tens of kelvin, not at a point.
 * Film boiling, T_s >= T_L: q = h_f (T_s - T_b) + 0.75 h_rad (T_s - T_oil) + h_c (T_b - T_oil): vapour-film
   conduction (Bromley 1950 natural; Bromley-LeRoy-Robbers 1953 forced, per flow source, combined in
   quadrature like h_c; natural and forced blended n = 3), radiation
@@ -46,7 +48,7 @@ class BoundaryHTC:
 
     T_grid_C (m,), h_W_m2K (n_points, m), ambient_C (n_points,), velocity_m_s (n_points,),
     segment (n_points,). Calling it with the surface temperatures (n_points,) interpolates linearly
-    (clamped to the grid ends). Diagnostics: length_m (run length of the fastest flow source),
+    (clamped to the grid ends); :meth:`slope` gives dh/dT_s. Diagnostics: length_m (run length of the fastest flow source),
     leidenfrost_C and peak_C per point (NaN for air).
     """
 
@@ -63,13 +65,26 @@ class BoundaryHTC:
     def __post_init__(self) -> None:
         object.__setattr__(self, "_rows", np.arange(self.h_W_m2K.shape[0]))
 
-    def __call__(self, T_surface_C: np.ndarray) -> np.ndarray:
+    def _cell(self, T_surface_C: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
         T0, dT, m = self.T_grid_C[0], self.T_grid_C[1] - self.T_grid_C[0], self.T_grid_C.size
         u = np.clip((np.asarray(T_surface_C, dtype=float) - T0) / dT, 0.0, m - 1.0)
         i = np.minimum(u.astype(np.intp), m - 2)
-        w = u - i
+        return i, u - i, dT
+
+    def __call__(self, T_surface_C: np.ndarray) -> np.ndarray:
+        i, w, _ = self._cell(T_surface_C)
         h = self.h_W_m2K
         return h[self._rows, i] * (1.0 - w) + h[self._rows, i + 1] * w
+
+    def slope(self, T_surface_C: np.ndarray) -> np.ndarray:
+        """dh/dT_s (W/m^2K^2) of the interpolant, zero outside the grid -- for a Newton linearisation of the
+        boundary flux q = h(T_s)(T_s - T_amb): dq/dT_s = h + (T_s - T_amb) dh/dT_s (boiling curves are steep
+        near the Leidenfrost point, where a fixed point on h alone can stall)."""
+        T = np.asarray(T_surface_C, dtype=float)
+        i, _, dT = self._cell(T)
+        inside = (T >= self.T_grid_C[0]) & (T <= self.T_grid_C[-1])
+        h = self.h_W_m2K
+        return np.where(inside, (h[self._rows, i + 1] - h[self._rows, i]) / dT, 0.0)
 
 
 def _grid(T_low_C: float, T_high_C: float, step_K: float) -> np.ndarray:
@@ -133,7 +148,7 @@ def oil_heat_flux(oil: OilProperties, flow: LocalFlow, T_s: np.ndarray, T_oil: f
               + h_c_interface * (Tb - T_oil))
     # regimes
     T_L = leidenfrost_temperature(oil, flow.velocity_m_s)
-    T_peak = np.minimum(T_peak_nb, T_L)
+    T_peak = np.minimum(T_peak_nb, T_L - oil.transition_min_width_K)
     q_peak = _interp_rows(T_s, q_wet, T_peak)
     q_film_L = _interp_rows(T_s, q_film, T_L)
     theta = np.clip((T_s[None, :] - T_peak[:, None]) / np.maximum(T_L - T_peak, 1e-9)[:, None], 0.0, 1.0)

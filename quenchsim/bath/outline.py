@@ -1,8 +1,8 @@
-"""Boundary points of simple axisymmetric outlines, for the bath's own diagnostics and checks.
+"""Boundary points of axisymmetric outlines without meshing, for the bath's own diagnostics and checks.
 
-The quench runs take their boundary points from the geometry builder; the bath command, report and
-tests also need them for a plain rectangular ring section (optionally with 45 deg chamfers) and for the
-ISO 9950 probe (a solid cylinder), built here without meshing.
+The quench runs take their boundary points (facet quadrature points) from the mesh; the bath command,
+report and tests need them without a mesh: for any geometry :class:`Profile` of a case
+(:func:`profile_points`), a plain rectangular ring section and the ISO 9950 probe (a solid cylinder).
 """
 
 from __future__ import annotations
@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from quenchsim.geometry.boundary import BoundaryPoints, SectionExtent
+from quenchsim.geometry.profile import Profile
 
 
 def _polygon_points(vertices: list[tuple[float, float]], names: list[str], spacing_m: float,
@@ -58,3 +59,30 @@ def probe_points(diameter_m: float = 12.5e-3, length_m: float = 60e-3, spacing_m
     return BoundaryPoints(r_m=pts.r_m[keep], z_m=pts.z_m[keep], normal_r=pts.normal_r[keep],
                           normal_z=pts.normal_z[keep], segment=pts.segment[keep], s_m=pts.s_m[keep],
                           segment_length_m=pts.segment_length_m[keep], extent=pts.extent)
+
+
+def profile_points(profile: Profile, spacing_m: float = 2e-3) -> BoundaryPoints:
+    """Midpoints of equal sub-arcs of every segment of a counter-clockwise profile (lines and arcs);
+    the "axis" segment of a solid section is a symmetry line and gets no points."""
+    cols: dict[str, list[np.ndarray]] = {k: [] for k in ("r", "z", "nr", "nz", "seg", "s", "L")}
+    for seg in profile.segments:
+        if seg.name == "axis":
+            continue
+        length = seg.length()
+        m = max(2, int(np.ceil(length / spacing_m)))
+        nodes = seg.points(2 * m + 1)  # ends, midpoints and ends of the m sub-arcs
+        mid = nodes[1::2]
+        tangent = nodes[2::2] - nodes[0:-1:2]
+        tangent /= np.linalg.norm(tangent, axis=1)[:, None]
+        cols["r"].append(mid[:, 0])
+        cols["z"].append(mid[:, 1])
+        cols["nr"].append(tangent[:, 1])   # outward normal: tangent turned clockwise
+        cols["nz"].append(-tangent[:, 0])
+        cols["seg"].append(np.full(m, seg.name, dtype=object))
+        cols["s"].append((np.arange(m) + 0.5) / m * length)
+        cols["L"].append(np.full(m, length))
+    cat = {k: np.concatenate(v) for k, v in cols.items()}
+    r0, r1, z0, z1 = profile.bounds()
+    return BoundaryPoints(r_m=cat["r"], z_m=cat["z"], normal_r=cat["nr"], normal_z=cat["nz"],
+                          segment=cat["seg"].astype(str), s_m=cat["s"], segment_length_m=cat["L"],
+                          extent=SectionExtent(r0, r1, z0, z1))
