@@ -6,6 +6,7 @@ Public API::
     cfg = parse_bath(spec, field="quench.bath") -> BathConfig
     htc = boundary_htc(cfg, points) -> BoundaryHTC        # once per stage
     h = htc(T_surface_C)                                  # (n_points,) -> (n_points,), every iteration
+    dh = htc.slope(T_surface_C)                           # dh/dT_s, for a Newton linearisation of h(T_s)(T_s - T_amb)
     air = air_htc(points, air_temperature_C, emissivity) -> BoundaryHTC
 
 ``BoundaryHTC`` carries T_grid_C (m,), h_W_m2K (n_points, m), ambient_C, velocity_m_s, segment (n_points,)
@@ -22,6 +23,8 @@ The ``[quench.bath]`` table (units as suffixes; condition overrides merged in be
     oil_swirl_fraction = 0.0             # share of the part's rotation the nearby oil follows (0-1), default 0
     corner_carryover = 0.3               # share of a wall jet carried round a convex edge onto a face
                                          # turned ~90 deg from the jet (0-1), default 0.3
+    id_crossflow_up_m_s = 0.0            # vertical oil speed (up > 0) the "id" jets cross on their way, default 0
+    od_crossflow_up_m_s = 0.0            # same for the "od" rows (-5..5 m/s)
     T_max_C = 1100.0                     # top of the HTC(T) grid (clamped above), default 1100
     T_step_K = 2.0                       # grid step, default 2
 

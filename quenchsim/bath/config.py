@@ -43,6 +43,7 @@ class BathConfig:
     oil_swirl_fraction: float
     turntable_open_fraction: float
     corner_carryover: float
+    crossflow_up_m_s: dict[str, float]
     T_max_C: float
     T_step_K: float
 
@@ -116,5 +117,7 @@ def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
         oil_swirl_fraction=_number(spec, "oil_swirl_fraction", field, 0.0, lo=0.0, hi=1.0),
         turntable_open_fraction=_number(spec, "turntable_open_fraction", field, 0.5, lo=0.0, hi=1.0),
         corner_carryover=_number(spec, "corner_carryover", field, 0.3, lo=0.0, hi=1.0),
+        crossflow_up_m_s={side: _number(spec, f"{side}_crossflow_up_m_s", field, 0.0, lo=-5.0, hi=5.0)
+                          for side in SIDES},
         T_max_C=T_max,
         T_step_K=_number(spec, "T_step_K", field, 2.0, lo=0.1, hi=50.0))

@@ -22,6 +22,11 @@ JET_SPREAD_S = 0.094
 # Jets, 1976): U_m/U_0 = 3.5 (x/b_0)^(-1/2), i.e. U_m = 3.5 sqrt(J'/(rho x)) with J' = rho U_0^2 b_0 the
 # momentum flux per unit width.
 WALL_JET_C = 3.5
+# Round jet in a cross-flow (Pratte & Baines, J. Hydraul. Div. ASCE 93 (1967) 53): centre-line trajectory
+# y/(R d) = A (x/(R d))^m with R = U_jet/U_cross, y the penetration along the exit direction and x the
+# drift with the cross-flow; A = 2.05, m = 0.28.
+CROSSFLOW_A = 2.05
+CROSSFLOW_M = 0.28
 
 
 def jet_centreline_velocity(U0_m_s: np.ndarray, d_m: np.ndarray, x_m: np.ndarray) -> np.ndarray:
@@ -33,6 +38,15 @@ def jet_centreline_velocity(U0_m_s: np.ndarray, d_m: np.ndarray, x_m: np.ndarray
 def jet_half_width(d_m: np.ndarray, x_m: np.ndarray) -> np.ndarray:
     """Half-velocity radius of a round jet: max(d/2, S x)."""
     return np.maximum(0.5 * np.asarray(d_m, dtype=float), JET_SPREAD_S * np.asarray(x_m, dtype=float))
+
+
+def crossflow_drift(U0_m_s: float, d_m: float, penetration_m: float, U_cross_m_s: float) -> float:
+    """Drift x of a round jet with the cross-flow while it penetrates ``penetration_m`` toward the wall:
+    x = R d (y/(A R d))^(1/m) (Pratte & Baines 1967), 0 without cross-flow."""
+    if U_cross_m_s == 0.0 or U0_m_s == 0.0:
+        return 0.0
+    Rd = U0_m_s / abs(U_cross_m_s) * d_m
+    return float(Rd * (penetration_m / (CROSSFLOW_A * Rd)) ** (1.0 / CROSSFLOW_M))
 
 
 def plane_wall_jet_velocity(J_per_width_N_m: np.ndarray, rho_kg_m3: float, x_m: np.ndarray) -> np.ndarray:

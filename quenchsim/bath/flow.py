@@ -6,8 +6,14 @@ local speed U_i and a run length x_i (distance the boundary layer has developed 
 model turns each pair into a forced-convection coefficient.
 
 Jet rows (see quenchsim.bath.correlations for the constants and sources):
-1. Free jet from the exit to the surface, travel H = standoff / cos(inclination): arrival centre-line
-   speed U_a = U_0 min(1, B d/H) (potential core, then 1/x decay); arrival half-width b = max(d/2, S H).
+1. Free jet from the exit to the surface, penetration y = standoff / cos(inclination). A vertical cross-flow
+   U_x on the row's side (``id_crossflow_up_m_s``: the oil rising in the bore as the ring heats it; the
+   report saw weak ID jets bend before the bore, strong ones hit it and rise) makes the jet drift
+   x = R d (y/(A R d))^(1/m), R = U_0/|U_x| (Pratte & Baines 1967): the jet travels H = sqrt(y^2 + x^2)
+   and arrives weaker (the shift of its impact point is not modelled: it would let a faster jet lower the
+   HTC of points near the slow jet's impact). Arrival centre-line speed U_a = U_0 min(1, B d/H) (potential
+   core, then 1/x decay); arrival half-width b = max(d/2, S H). The cross-flow itself is the buoyant
+   flow along the hot part, already in the natural-convection coefficient.
 2. Impingement at height z_imp = height - standoff tan(inclination) on the face the row aims at
    (the bore for "id" rows, the OD for "od" rows). The momentum flux of the row, N rho U_0^2 pi d^2/4
    (conserved along a free jet), spread over the circumference 2 pi r_imp, leaves the impact line as
@@ -37,7 +43,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from quenchsim.bath.config import BathConfig, NozzleRow
-from quenchsim.bath.correlations import jet_centreline_velocity, jet_half_width, plane_wall_jet_velocity
+from quenchsim.bath.correlations import (crossflow_drift, jet_centreline_velocity, jet_half_width,
+                                         plane_wall_jet_velocity)
 from quenchsim.geometry.boundary import BoundaryPoints
 
 VERTICAL_NZ = 0.7
@@ -85,7 +92,9 @@ def _row_flow(cfg: BathConfig, row: NozzleRow, pts: BoundaryPoints) -> tuple[np.
     on_face = facing > FACING_COSINE
     if not np.any(on_face) or row.jet_speed_m_s == 0.0:
         return np.zeros(n), np.ones(n), np.zeros(n)
-    travel = row.standoff_m / np.cos(row.inclination_rad)
+    U_cross = cfg.crossflow_up_m_s[row.side]
+    drift = crossflow_drift(row.jet_speed_m_s, row.diameter_m, row.standoff_m / np.cos(row.inclination_rad), U_cross)
+    travel = np.hypot(row.standoff_m / np.cos(row.inclination_rad), drift)
     z_imp = pts.extent.z_min_m + row.height_m - row.standoff_m * np.tan(row.inclination_rad)
     face_idx = np.flatnonzero(on_face)
     r_imp = pts.r_m[face_idx[np.argmin(np.abs(pts.z_m[face_idx] - z_imp))]]

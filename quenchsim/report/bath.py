@@ -284,18 +284,21 @@ def relative_to_condition_1(runs: dict[str, dict[str, Any]]) -> dict[str, Any]:
 
 
 def _inputs_hash() -> str:
-    """Hash of what the centre-cooling study takes from the bath: case A (file) and its conditions' HTC curves."""
+    """Hash of what the centre-cooling study depends on: the resolved case-A inputs of each condition (geometry,
+    mesh, process, quench, probes, material; not comments) and the conditions' HTC curves."""
     path, conds = CASES["A"]
-    digest = hashlib.sha256(path.read_bytes())
+    digest = hashlib.sha256()
     for cond in conds:
-        _, _, htc = condition_htc(path, cond, spacing_m=5e-3)
+        case, _, htc = condition_htc(path, cond, spacing_m=5e-3)
+        inputs = {k: case.data.get(k) for k in ("material", "geometry", "mesh", "process", "quench", "probes")}
+        digest.update(json.dumps(inputs, sort_keys=True, default=str).encode())
         digest.update(np.round(htc.h_W_m2K, 3).tobytes())
     return digest.hexdigest()[:16]
 
 
 def case_a_study(reports_dir: Path, mesh_size_mm: float | None = None) -> dict[str, Any]:
     """Case-A centre cooling for conditions 1-3 with the full thermal chain, cached in bath_case_a.json
-    (reused while case A and its HTC curves are unchanged: the three runs take many minutes; a change of the
+    (reused while the resolved case-A inputs and their HTC curves are unchanged: the three runs take many minutes; a change of the
     thermal chain itself is not detected -- delete the file to force a rerun)."""
     cache = reports_dir / "bath_case_a.json"
     key = _inputs_hash()
@@ -307,7 +310,10 @@ def case_a_study(reports_dir: Path, mesh_size_mm: float | None = None) -> dict[s
     with tempfile.TemporaryDirectory() as tmp:
         for cond in CASES["A"][1]:
             runs[cond] = centre_cooling(CASES["A"][0], cond, Path(tmp) / cond, 120.0, mesh_size_mm)
-    data = {"inputs_hash": key, "mesh_size_mm_requested": mesh_size_mm, "runs": runs,
+    import subprocess
+
+    head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+    data = {"inputs_hash": key, "mesh_size_mm_requested": mesh_size_mm, "git_head": head.stdout.strip(), "runs": runs,
             "relative_to_condition_1": relative_to_condition_1(runs)}
     cache.write_text(json.dumps(data, indent=2))
     return data
@@ -428,7 +434,7 @@ def write(reports_dir: Path) -> list[Path]:
     md += ["## Case A: section centre P1 relative to condition 1 (full thermal chain, mechanics off)", "",
            "`quenchsim.simulation.run_case` on the case file's mesh with the bath model; time from the austenitising "
            "temperature to 500 C at P1 (cached in `bath_case_a.json`, rerun when case A or its HTC curves change; "
-           f"inputs hash {study['inputs_hash']}).", "",
+           f"inputs hash {study['inputs_hash']}, repository at {study.get('git_head', '?')} when run).", "",
            "| condition | t to 500 C (s) | time ratio | rate ratio | report | within |", "|---|---|---|---|---|---|"]
     for cond, e in rel.items():
         tgt = e.get("target")
