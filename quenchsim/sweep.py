@@ -241,7 +241,8 @@ def run_point(raw_case: dict[str, Any], case_path: str | None, condition: str | 
               out_dir: str) -> dict[str, Any]:
     """Run one case of a sweep into ``out_dir`` (executed on a Dask worker; never raises).
 
-    Returns ``{"status": "ok" | "failed", "error": str | None, "summary": dict | None, "wall_s": float}``.
+    Returns ``{"status": "ok" | "failed", "error": str | None, "summary": dict | None, "wall_s": float,
+    "cpu_s": float}`` (wall and CPU time of this process for the case).
     """
     import tomli_w
 
@@ -249,7 +250,7 @@ def run_point(raw_case: dict[str, Any], case_path: str | None, condition: str | 
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    t0 = time.perf_counter()
+    t0, cpu0 = time.perf_counter(), time.process_time()
     record = {"case": case_path, "condition": condition, "overrides": overrides,
               "inputs_hash": case_hash(raw_case, condition, overrides)}
     _write_json(out / CASE_JSON, record)
@@ -267,7 +268,8 @@ def run_point(raw_case: dict[str, Any], case_path: str | None, condition: str | 
         log.debug("case %s failed:\n%s", out, traceback.format_exc())
     if status != "ok":
         _write_json(out / CASE_JSON, {**record, "error": error})
-    return {"status": status, "error": error, "summary": summary, "wall_s": time.perf_counter() - t0}
+    return {"status": status, "error": error, "summary": summary, "wall_s": time.perf_counter() - t0,
+            "cpu_s": time.process_time() - cpu0}
 
 
 def finished(case_dir: Path, inputs_hash: str) -> dict[str, Any] | None:
@@ -290,9 +292,9 @@ class ResultsTable:
         self.rows: dict[str, dict[str, Any]] = {}
 
     def add(self, name: str, point: dict[str, Any], status: str, error: str | None,
-            summary: dict[str, Any] | None) -> dict[str, Any]:
+            summary: dict[str, Any] | None, timing: dict[str, float] | None = None) -> dict[str, Any]:
         row = {"case": name, "status": status, "error": error or "", **point,
-               **(flatten_summary(summary) if summary else {})}
+               **(flatten_summary(summary) if summary else {}), **(timing or {})}
         self.rows[name] = row
         self.write()
         return row
@@ -376,7 +378,8 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, scheduler: str | None = None
         nonlocal ran, failed
         ran += 1
         failed += result["status"] != "ok"
-        row = table.add(name, by_name[name], result["status"], result["error"], result["summary"])
+        timing = {f"sweep.case_{k}": result[k] for k in ("wall_s", "cpu_s") if k in result}
+        row = table.add(name, by_name[name], result["status"], result["error"], result["summary"], timing)
         bar.update(1)
         bar.set_postfix_str(f"{failed} failed" if failed else "")
         if on_result is not None:

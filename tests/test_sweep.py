@@ -116,6 +116,19 @@ def test_failed_case_is_recorded_and_the_rest_go_on_and_rerun_skips_finished(tmp
     assert (third.skipped, third.ran) == (0, 1)
 
 
+def test_ctrl_c_keeps_every_finished_case_and_a_rerun_does_the_rest(tmp_path):
+    spec = make_sweep(small_case(), grid={"quench.time_s": [20.0, 21.0, 22.0]})
+
+    def ctrl_c_after_the_first_case(row):
+        raise KeyboardInterrupt
+
+    first = run_sweep(spec, tmp_path, workers=0, progress=False, on_result=ctrl_c_after_the_first_case)
+    assert first.interrupted and (first.ran, first.pending) == (1, 2)
+    assert [r["status"] for r in read_results(tmp_path / RESULTS_CSV)] == ["ok"]
+    second = run_sweep(spec, tmp_path, workers=0, progress=False)
+    assert (second.skipped, second.ran, second.pending, second.interrupted) == (1, 2, 0, False)
+
+
 def _sweep_file(tmp_path: Path, n: int) -> Path:
     (tmp_path / "ring.toml").write_text(tomli_w.dumps(small_case()))
     times = ", ".join(str(20.0 + i) for i in range(n))

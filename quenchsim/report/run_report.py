@@ -203,7 +203,8 @@ def run_section(run: RunData) -> Section:
 
 
 # -- sweep directory ------------------------------------------------------------------------------------
-def _response_columns(rows: list[dict[str, Any]]) -> list[str]:
+def response_columns(rows: list[dict[str, Any]]) -> list[str]:
+    """The result columns of :data:`RESPONSE_OUTPUTS` that vary between the rows (at most MAX_RESPONSES)."""
     columns = list(dict.fromkeys(k for r in rows for k in r))
     chosen: list[str] = []
     for pattern in RESPONSE_OUTPUTS:
@@ -227,7 +228,7 @@ def sweep_section(path: Path) -> Section:
     items = [Item("text", "Sweep", text=(f"Base case {meta.get('case')}, condition {meta.get('condition')}; "
                                          f"swept: {', '.join(params)}. {len(ok)} of {n_cases} cases ok, "
                                          f"{len(rows) - len(ok)} failed, {n_cases - len(rows)} not run."))]
-    outputs = _response_columns(ok)
+    outputs = response_columns(ok)
     header = ["case", "status", *params, *outputs]
     items.append(Item("table", "Results (key outputs; all columns in results.csv)", header=header,
                       rows=[[r.get(c) for c in header] for r in rows]))
