@@ -1,4 +1,4 @@
-"""Solid-contact laws of the big-end bearing (pure functions, numba-compiled, float64 arrays in/out).
+"""Solid-contact laws of the big-end bearing (pure functions, numba-compiled; float64 scalars or arrays).
 
 Line contact (roller-race, roller-pocket bar, cage land-outer ring): Palmgren's elastic approach
     delta [mm] = 1.36 eta^0.9 Q^0.9 / l^0.8,   eta = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 = 2/E' [mm^2/N]

@@ -10,10 +10,11 @@ x_o, y_o], v = dq/dt: 6 N + 10 first-order ODEs. For a body of mass m at rho wit
                       - 2 omega z x u                              (Coriolis)
                       - omega_dot z x rho ] + m g'                 (Euler; gravity rotated into the frame)
     I dOmega/dt = M - I omega_dot                                  (Omega relative to the frame)
-Contacts (one compiled pass over the rollers): roller-pin and roller-outer race (Palmgren line contact with
-damping, EHL traction), roller-pocket (flat pocket faces at +-w/2 from the pocket's radial line,
+Contacts (one compiled pass over the rollers): roller-pin and roller-outer race (Palmgren line
+contact with damping, EHL traction), roller-pocket (flat pocket faces at +-w/2 from the pocket's radial line,
 Palmgren contact over the pocket contact length, Coulomb friction), cage land-outer ring (short
-journal bearing with squeeze film down to the smallest film h_min, solid land contact beyond it), cage unbalance.
+journal bearing with squeeze film down to the smallest film h_min, solid land contact beyond it),
+cage unbalance.
 """
 
 from __future__ import annotations
@@ -89,7 +90,7 @@ def n_states(n_rollers: int) -> int:
 
 
 @njit(cache=True)
-def _traction(q, ue, slide, r_eff, p):
+def _traction(q: float, ue: float, slide: float, r_eff: float, p: Params) -> float:
     """Signed traction coefficient of one roller-race contact (film from Pan-Hamrock + thermal factor)."""
     w = q / p.l_roller[0]
     ue_f = max(ue, p.u_floor)
@@ -102,7 +103,9 @@ def _traction(q, ue, slide, r_eff, p):
 
 
 @njit(cache=True)
-def _pocket_face(sgn, q, dx, dy, erx, ery, etx, ety, vxr, vyr, wr, vxc, vyc, wc, p):
+def _pocket_face(sgn: float, q: float, dx: float, dy: float, erx: float, ery: float, etx: float, ety: float,
+                 vxr: float, vyr: float, wr: float, vxc: float, vyc: float, wc: float,
+                 p: Params) -> tuple[float, float, float, float]:
     """Force (fx, fy) and moment on the roller and moment on the cage of one pocket face (sgn = +-1)."""
     r = p.r_roller
     ax = sgn * r * etx  # contact point relative to roller centre
@@ -121,7 +124,7 @@ def _pocket_face(sgn, q, dx, dy, erx, ery, etx, ety, vxr, vyr, wr, vxc, vyc, wc,
 
 
 @njit(cache=True)
-def evaluate(t, y, p):
+def evaluate(t: float, y: np.ndarray, p: Params) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Accelerations (3N + 5,) plus per-roller pocket force, pin and outer-race loads.
 
     One pass over the rollers with scalar contact laws (no temporary arrays: the right-hand side is
@@ -280,7 +283,7 @@ def evaluate(t, y, p):
 
 
 @njit(cache=True)
-def rhs(t, y, p):
+def rhs(t: float, y: np.ndarray, p: Params) -> np.ndarray:
     """dy/dt = [v, a(q, v, t)]."""
     nq = 3 * p.n + 5
     acc, _, _, _ = evaluate(t, y, p)
@@ -291,7 +294,7 @@ def rhs(t, y, p):
 
 
 @njit(cache=True)
-def jacobian(t, y, p, typical):
+def jacobian(t: float, y: np.ndarray, p: Params, typical: np.ndarray) -> np.ndarray:
     """Forward-difference Jacobian d(rhs)/dy, all 6N + 10 columns in one compiled call
     (step sqrt(eps) max(|y_k|, typical_k)); handed to the implicit SciPy methods."""
     f0 = rhs(t, y, p)
@@ -327,7 +330,7 @@ def pack(p: Params) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
 
 
 @njit(cache=True)
-def _unpack(s, rolls, tables, l_land):
+def _unpack(s: np.ndarray, rolls: np.ndarray, tables: np.ndarray, l_land: np.ndarray) -> Params:
     """Rebuild :class:`Params` inside compiled code (field order of the class)."""
     return Params(int(s[0]), s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], rolls[0], rolls[1],
                   rolls[2], l_land, s[10], s[11], s[12], s[13], s[14], s[15], s[16], s[17], s[18], s[19],
@@ -337,12 +340,14 @@ def _unpack(s, rolls, tables, l_land):
 
 
 @njit(cache=True)
-def rhs_packed(t, y, s, rolls, tables, l_land):
+def rhs_packed(t: float, y: np.ndarray, s: np.ndarray, rolls: np.ndarray, tables: np.ndarray,
+               l_land: np.ndarray) -> np.ndarray:
     """:func:`rhs` with the parameters from :func:`pack`."""
     return rhs(t, y, _unpack(s, rolls, tables, l_land))
 
 
 @njit(cache=True)
-def jacobian_packed(t, y, s, rolls, tables, l_land, typical):
+def jacobian_packed(t: float, y: np.ndarray, s: np.ndarray, rolls: np.ndarray, tables: np.ndarray,
+                    l_land: np.ndarray, typical: np.ndarray) -> np.ndarray:
     """:func:`jacobian` with the parameters from :func:`pack`."""
     return jacobian(t, y, _unpack(s, rolls, tables, l_land), typical)

@@ -1,4 +1,4 @@
-"""EHL laws of the roller-race line contacts (pure functions, numba-compiled, float64 arrays).
+"""EHL laws of the roller-race line contacts (pure functions, numba-compiled; float64 scalars or arrays).
 
 - Hertz line contact: p_h = sqrt(w E' / (2 pi R)), w = Q / l (Johnson, Contact Mechanics, 1985, eq. 4.45).
 - Pan & Hamrock (J. Tribol. 111, 1989) central film thickness of an isothermal line contact:
