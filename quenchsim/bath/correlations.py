@@ -7,6 +7,8 @@ checked against `ht`'s scalar versions in tests/test_bath_correlations.py.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import ht
 
@@ -27,6 +29,8 @@ WALL_JET_C = 3.5
 # drift with the cross-flow; A = 2.05, m = 0.28.
 CROSSFLOW_A = 2.05
 CROSSFLOW_M = 0.28
+MAX_DRIFT_M = 1e3
+"""Cap of the drift (m): a jet this weak never reaches the wall (its arrival speed is then ~0)."""
 
 
 def jet_centreline_velocity(U0_m_s: np.ndarray, d_m: np.ndarray, x_m: np.ndarray) -> np.ndarray:
@@ -43,10 +47,13 @@ def jet_half_width(d_m: np.ndarray, x_m: np.ndarray) -> np.ndarray:
 def crossflow_drift(U0_m_s: float, d_m: float, penetration_m: float, U_cross_m_s: float) -> float:
     """Drift x of a round jet with the cross-flow while it penetrates ``penetration_m`` toward the wall:
     x = R d (y/(A R d))^(1/m) (Pratte & Baines 1967), 0 without cross-flow."""
-    if U_cross_m_s == 0.0 or U0_m_s == 0.0:
+    if U_cross_m_s == 0.0:
         return 0.0
+    if U0_m_s == 0.0:
+        return MAX_DRIFT_M
     Rd = U0_m_s / abs(U_cross_m_s) * d_m
-    return float(Rd * (penetration_m / (CROSSFLOW_A * Rd)) ** (1.0 / CROSSFLOW_M))
+    log_x = math.log(Rd) + (math.log(penetration_m) - math.log(CROSSFLOW_A * Rd)) / CROSSFLOW_M
+    return math.exp(min(log_x, math.log(MAX_DRIFT_M)))
 
 
 def plane_wall_jet_velocity(J_per_width_N_m: np.ndarray, rho_kg_m3: float, x_m: np.ndarray) -> np.ndarray:
