@@ -189,3 +189,36 @@ def test_li_model_reproduces_published_4140_critical_rate():
     bainite = kin.reactions["bainite"]
     V, _ = quad(lambda T: 1.0 / float(bainite.isothermal_time_s(0.01, T)), kin.Ms_C, bainite.T_upper_C, limit=200)
     assert V == pytest.approx(24.8, rel=0.05)
+
+
+def test_ttt_table_model_passes_through_its_points():
+    """A tabulated TTT diagram (start/finish times) becomes JMAK laws through both points at each temperature."""
+    material = copy.deepcopy(load_material("SUJ2"))
+    T_tab = [550.0, 600.0, 650.0, 700.0, 710.0]
+    t_s, t_f = [2.0, 1.5, 3.0, 20.0, 50.0], [30.0, 20.0, 40.0, 400.0, 900.0]
+    material["kinetics"]["pearlite"] = {"model": "ttt_table", "source": "test table", "T_C": T_tab, "t_start_s": t_s,
+                                        "t_finish_s": t_f, "X_start": 0.01, "X_finish": 0.99, "T_upper_C": 724.0}
+    del material["kinetics"]["bainite"]
+    kin = load_kinetics(material, 840.0)
+    for T, ts, tf in zip(T_tab[:-1], t_s, t_f):
+        states = _hold(kin, T, np.array([ts, tf]))
+        assert states[0].fractions["pearlite"][0] == pytest.approx(0.01, rel=1e-9)
+        assert states[1].fractions["pearlite"][0] == pytest.approx(0.99, rel=1e-9)
+    assert _hold(kin, 500.0, np.array([1e4]))[0].fractions["pearlite"][0] == 0.0  # outside the table: no reaction
+
+
+def test_variable_exponent_additivity_converges():
+    """100Cr6 bainite has n(T): cooling at 2 C/s through the bainite range converges as the step shrinks."""
+    kin = _kin("100Cr6_furlan", T_aust=850.0)
+    coarse = dataclasses.replace(kin, substep_K=1e9)
+    values = []
+    for n_steps in (10, 20, 40, 80, 1280):
+        state, T0, T1 = initial_state((1,), coarse), 390.0, 235.0
+        for k in range(n_steps):
+            Ta, Tb = T0 - k * (T0 - T1) / n_steps, T0 - (k + 1) * (T0 - T1) / n_steps
+            state = advance(state, coarse, Ta, Tb, (Ta - Tb) / 2.0)
+        values.append(state.fractions["bainite"][0])
+    errors = np.abs(np.array(values[:-1]) - values[-1])
+    orders = np.log2(errors[:-2] / errors[1:-1])
+    assert values[-1] > 0.05
+    assert np.all(orders > 1.8), (errors, orders)  # second order (Bs crossing handled by splitting the sub-step)

@@ -233,6 +233,9 @@ def _reaction(table: Any, where: str, composition: Mapping[str, float], grain: f
     elif model == "jmak_polynomial":
         params = {"ln_b": _poly(table, "ln_b_poly_T_C", where), "n": _poly(table, "n_poly_T_C", where),
                   "time_unit_s": _number(table, "time_unit_s", where, positive=True)}
+        n_min = np.polynomial.polynomial.polyval(np.linspace(0.0, T_upper, 200), params["n"]).min()
+        if not n_min > 0.0:
+            raise InputError(f"{where}.n_poly_T_C", table["n_poly_T_C"], f"n(T) must stay > 0 from 0 C to {T_upper:.0f} C")
     elif model == "ttt_table":
         Xs, Xf = _fraction_pair(table, where)
         T = np.asarray(table.get("T_C", []), dtype=float)
@@ -248,6 +251,8 @@ def _reaction(table: Any, where: str, composition: Mapping[str, float], grain: f
         params = {"T_C": T, "n": n, "ln_tau": np.log(ts) - np.log(-np.log1p(-Xs)) / n}
     else:
         raise InputError(f"{where}.model", model, "must be one of li1998, jmak_polynomial, ttt_table")
+    if model == "ttt_table":  # no reaction above the table either
+        T_upper = min(T_upper, float(params["T_C"][-1]))
     return Reaction(model=model, source=source, T_upper_C=T_upper, params=params)
 
 

@@ -8,7 +8,8 @@ Diffusional reactions (Scheil additivity): the normalised JMAK progress xi_i of 
 along any T(t), q_i = -ln(1 - xi_i) = I_i^{n}, I_i = int dt / tau_i(T(t)) (the additivity integral);
 exact for the isothermal law and for constant n (isokinetic reaction). With n(T) varying, each
 sub-step converts q_i to the fictitious time I_i = q_i^{1/n} at the sub-step's n (Scheil-Hougardy).
-The integral of 1/tau over a sub-step uses 2-point Gauss-Legendre quadrature.
+The integral of 1/tau over a sub-step uses 2-point Gauss-Legendre quadrature on the part of the
+sub-step below the reaction's upper temperature (Ae1, Bs), where 1/tau may jump.
 
 Competition: during a sub-step reaction i alone would turn a share 1 - exp(-dq_i) of the austenite
 left; together they turn f_A (1 - exp(-sum dq_i)), split in proportion to dq_i (exact when the rate
@@ -78,6 +79,13 @@ def _diffusional_increments(kin: Kinetics, q: dict[str, np.ndarray], Ta: np.ndar
         if cold.any():
             sel = slice(None) if cold.all() else np.flatnonzero(cold)
             ta, tb, hs, qs = Ta[sel], Tb[sel], h[sel], q[r][sel]
+            # integrate only over the part of the sub-step below T_upper (1/tau may jump there, e.g. at Bs)
+            T_up = reaction.T_upper_C
+            hot_end = np.maximum(ta, tb) > T_up
+            if hot_end.any():
+                share = np.where(hot_end, (T_up - np.minimum(ta, tb)) / np.where(hot_end, np.abs(tb - ta), 1.0), 1.0)
+                ta, tb = np.where(hot_end & (ta > tb), T_up, ta), np.where(hot_end & (tb > ta), T_up, tb)
+                hs = hs * share
             dI = 0.5 * hs * (reaction.inverse_tau(ta + (tb - ta) * _GAUSS[0])
                              + reaction.inverse_tau(ta + (tb - ta) * _GAUSS[1]))
             n = reaction.exponent(0.5 * (ta + tb))
