@@ -7,6 +7,8 @@ import dataclasses
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.integrate import quad
 
 from quenchsim.materials import load_material
@@ -14,6 +16,7 @@ from quenchsim.metallurgy import advance, initial_state, load_kinetics
 from quenchsim.metallurgy.laws import li_sigmoid_integral
 
 R_CAL = 1.98720  # cal/(mol K)
+_KIN_SUJ3 = load_kinetics(load_material("SUJ3"), 845.0)
 
 
 def _kin(name: str = "SUJ2", T_aust: float = 840.0, drop: tuple[str, ...] = ()):
@@ -222,3 +225,20 @@ def test_variable_exponent_additivity_converges():
     orders = np.log2(errors[:-2] / errors[1:-1])
     assert values[-1] > 0.05
     assert np.all(orders > 1.8), (errors, orders)  # second order (Bs crossing handled by splitting the sub-step)
+
+
+@settings(max_examples=25, deadline=None)
+@given(path=st.lists(st.tuples(st.floats(-50.0, 900.0), st.floats(0.0, 200.0)), min_size=1, max_size=12))
+def test_random_thermal_paths_keep_fractions_physical(path):
+    """Any path (cooling, re-heating, holds, jumps): fractions in [0, 1] summing to one, products never decrease."""
+    kin = _KIN_SUJ3
+    state, T = initial_state((2,), kin), np.array([kin.T_aust_C, 700.0])
+    for T_next, dt in path:
+        new = advance(state, kin, T, np.array([T_next, T_next - 30.0]), dt)
+        total = sum(new.fractions.values())
+        np.testing.assert_allclose(total, 1.0, atol=1e-12)
+        for p in ("pearlite", "bainite", "martensite"):
+            assert np.all(new.fractions[p] >= state.fractions[p])
+        assert np.all(new.fractions["austenite"] >= 0.0)
+        state, T = new, np.array([T_next, T_next - 30.0])
+
