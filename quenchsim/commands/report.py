@@ -22,5 +22,6 @@ def run(args: argparse.Namespace) -> int:
     if out.suffix.lower() not in (".html", ".htm"):
         raise InputError("--out", str(out), "must end in .html (the Markdown is written next to it as .md)")
     written = write_report(args.dirs, out, title=args.title)
-    print(f"{written[0]}\n{written[1]} (+ {len(written) - 2} PNG in {written[0].parent / (written[0].stem + '_files')})")
+    png_dir = written[0].parent / f"{written[0].stem}_files"
+    print(f"{written[0]}\n{written[1]} (+ {len(written) - 2} PNG in {png_dir})")
     return 0

@@ -66,7 +66,8 @@ def run_module(name: str, reports_dir: Path, package: str = PACKAGE) -> ModuleRe
         returned = write(reports_dir) or []
     except Exception as exc:  # noqa: BLE001
         tb = traceback.format_exc(limit=-3)
-        return ModuleResult(name, "failed", seconds=time.perf_counter() - t0, error=f"{type(exc).__name__}: {exc}\n{tb}")
+        return ModuleResult(name, "failed", seconds=time.perf_counter() - t0,
+                            error=f"{type(exc).__name__}: {exc}\n{tb}")
     seconds = time.perf_counter() - t0
     after = _snapshot(reports_dir)
     changed = {f for f, m in after.items() if before.get(f) != m}

@@ -131,7 +131,8 @@ def responses(rows: list[dict[str, Any]], x: str, group_by: list[str], outputs: 
     ncol = min(3, n)
     nrow = -(-n // ncol)
     fig, axes = plt.subplots(nrow, ncol, figsize=(4.2 * ncol, 3.3 * nrow), squeeze=False)
-    groups = sorted({tuple(r.get(g) for g in group_by) for r in rows}, key=lambda k: tuple(map(str, k)))
+    groups = sorted({tuple(r.get(g) for g in group_by) for r in rows},
+                    key=lambda k: tuple((0, v, "") if isinstance(v, (int, float)) else (1, 0, str(v)) for v in k))
     markers = itertools.cycle("os^vD<>")
     styles = {g: next(markers) for g in groups}
     for ax, out in zip(axes.ravel(), outputs):

@@ -254,7 +254,8 @@ def comparison_section(runs: list[RunData]) -> Section:
     keys = [("status", ("status",)), ("core HRC", ("hardness", "core_HRC")),
             ("HRC58 depth bore (mm)", ("hardness", "depth_mm", "HRC58_bore_mid")),
             ("HRC58 depth OD (mm)", ("hardness", "depth_mm", "HRC58_od_mid")),
-            ("ID change (mm)", ("dimensions_mm", "change", "id")), ("OD change (mm)", ("dimensions_mm", "change", "od")),
+            ("ID change (mm)", ("dimensions_mm", "change", "id")),
+            ("OD change (mm)", ("dimensions_mm", "change", "od")),
             ("width change (mm)", ("dimensions_mm", "change", "width")),
             ("hoop stress OD surface (MPa)", ("residual_stress_MPa", "hoop", "od_surface_mid"))]
 
