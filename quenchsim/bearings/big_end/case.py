@@ -246,7 +246,8 @@ def load_case(path: str | Path) -> BigEndCase:
     m = _section(data, "masses")
     masses = Masses(*(_get(m, "masses", k) for k in ("roller_kg", "roller_inertia_kg_m2", "cage_kg",
                                                        "cage_inertia_kg_m2", "outer_ring_kg")),
-                    reciprocating=_get(m, "masses", "reciprocating_kg", positive=False) if "reciprocating_kg" in m else 0.0)
+                    reciprocating=(_get(m, "masses", "reciprocating_kg", positive=False)
+                                   if "reciprocating_kg" in m else 0.0))
     lub = _section(data, "lubrication")
     oil = lub.get("oil")
     require(isinstance(oil, str) and oil in available_oils(), "lubrication.oil", oil,
@@ -260,7 +261,8 @@ def load_case(path: str | Path) -> BigEndCase:
     mod = _section(data, "model")
     model = Model(*(_get(mod, "model", k) for k in (
         "boundary_friction", "pocket_friction", "guide_friction", "contact_damping_ratio",
-        "friction_regularisation_m_s", "entrainment_floor_m_s")), guide_min_film=_get(mod, "model", "guide_min_film_um") * 1e-6)
+        "friction_regularisation_m_s", "entrainment_floor_m_s")),
+        guide_min_film=_get(mod, "model", "guide_min_film_um") * 1e-6)
     out = _section(data, "output")
     spr = out.get("samples_per_revolution")
     require(isinstance(spr, int) and spr >= 36, "output.samples_per_revolution", spr, "must be an integer >= 36")

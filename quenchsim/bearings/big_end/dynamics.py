@@ -257,7 +257,8 @@ def evaluate(t: float, y: np.ndarray, p: Params) -> tuple[np.ndarray, np.ndarray
         uy = ey / e
         rate = (vxc - vxo) * ux + (vyc - vyo) * uy
         qg = damped_contact_force(e - gap_limit, rate, p.l_land[0], p.e_star, p.m_cage, p.damping_ratio)
-        slip = (vxc - vxo) * (-uy) + (vyc - vyo) * ux + wc * p.land_radius - omega_o * (p.land_radius + p.guide_clearance)
+        slip = ((vxc - vxo) * (-uy) + (vyc - vyo) * ux + wc * p.land_radius
+                - omega_o * (p.land_radius + p.guide_clearance))
         fg = coulomb_friction(qg, slip, p.mu_guide, p.v_reg)
         fxc += -qg * ux + fg * uy
         fyc += -qg * uy - fg * ux

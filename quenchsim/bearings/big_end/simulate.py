@@ -5,7 +5,8 @@ speed). With Omega the speeds relative to the inner ring (the rotating frame, it
 and Omega_o that of the outer ring, pure rolling gives
     cage / roller orbit  Omega_th = Omega_o R_o / (R_i + R_o)   (relative to the inner ring)
     roller spin about its own axis relative to its orbit
-        s_th = Omega_o R_o (R_i + R_o - 2 r) / (2 r (R_i + R_o))   (= Omega_o R_o R_i / (r (R_i + R_o)) at zero clearance)
+        s_th = Omega_o R_o (R_i + R_o - 2 r) / (2 r (R_i + R_o))
+        (= Omega_o R_o R_i / (r (R_i + R_o)) at zero clearance)
 and the slips are formed with absolute speeds where the reference does:
     cage slip = 1 - (omega + Omega_c) / (omega + Omega_th),
     roller orbital slip = 1 - (omega + Omega_orb) / (omega + Omega_th),
