@@ -77,23 +77,33 @@ class _LinearSolver:
     def _pcg(self, K: sp.csr_matrix, b: np.ndarray, rtol: float) -> np.ndarray | None:
         x = np.zeros_like(b)
         r = b.copy()
-        target = rtol * np.linalg.norm(b)
+        target = rtol * _norm(b)
         z = self._lu.solve(r)
         p = z.copy()
-        rz = r @ z
+        rz = _dot(r, z)
         for it in range(self.max_cg):
             self._stale = it >= self.refresh_after  # the next solve refactorises
             Kp = K @ p
-            step = rz / (p @ Kp)
+            step = rz / _dot(p, Kp)
             x += step * p
             r -= step * Kp
             self.cg_iterations += 1
-            if np.linalg.norm(r) <= target:
+            if _norm(r) <= target:
                 return x
             z = self._lu.solve(r)
-            rz, rz_old = r @ z, rz
+            rz, rz_old = _dot(r, z), rz
             p = z + (rz / rz_old) * p
         return None
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> float:
+    """Vector dot product without BLAS: a multi-threaded BLAS dot on a loaded machine costs ~1000x
+    more than the product itself (measured: 2 ms vs 3 us for 14,000 entries, see the report)."""
+    return float(np.einsum("i,i->", a, b))
+
+
+def _norm(a: np.ndarray) -> float:
+    return float(np.sqrt(_dot(a, a)))
 
 
 @dataclass
@@ -209,11 +219,11 @@ class MechanicsSolver:
             f_int, f_abs = asm.internal_force(update.stress)
             residual = f_int - f_ext
             residual[self.fixed_dofs] = 0.0
-            return update, residual, float(np.linalg.norm(residual)), float(np.linalg.norm(f_abs))
+            return update, residual, _norm(residual), _norm(f_abs)
 
         u = self.displacement_m.copy()
         update, residual, norm, f_abs = evaluate(u)
-        reference = max(float(np.linalg.norm(f_ext)), norm)  # the step's out-of-balance load
+        reference = max(_norm(f_ext), norm)  # the step's out-of-balance load
         load = float(np.sqrt(np.mean((free1 - free0) ** 2)))
         if self._last_increment is not None and self._last_load > 0.0:
             # predictor: the last displacement increment scaled by the ratio of free-strain increments
