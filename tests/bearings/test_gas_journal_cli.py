@@ -59,3 +59,26 @@ def test_bad_input_exit_2(capsys, argv):
     code, out = _run(capsys, *argv)
     assert code == 2
     assert out.err.startswith("quenchsim: error:") and out.err.count("\n") == 1
+
+
+def test_orbit_json_and_csv(capsys, tmp_path):
+    csv = tmp_path / "orbit.csv"
+    code, out = _run(capsys, "orbit", "--bearing-number", "3", "--load", "0.72", "--mass-parameter", "0.5",
+                     "--level", "2", "--duration", "20", "--orbit-csv", str(csv))
+    assert code == 0
+    data = json.loads(out.out)
+    assert set(data) >= {"eccentricity", "attitude_deg", "stable", "orbit_csv"}
+    assert data["orbit_csv"] == str(csv)
+    lines = csv.read_text().splitlines()
+    assert lines[0] == "T,e_x,e_y,F_x,F_y" and len(lines) > 10
+    assert 0.0 < data["eccentricity"] < 1.0
+
+
+@pytest.mark.slow
+def test_stability_json(capsys):
+    code, out = _run(capsys, "stability", "--bearing-number", "1", "--grooves", "20", "--groove-angle", "30",
+                     "--groove-depth", "1.1", "--groove-width-ratio", "0.5", "--groove-length-ratio", "0.5",
+                     "--grooved", "rotor", "--level", "3")
+    assert code == 0
+    data = json.loads(out.out)
+    assert data["stable_below"] < data["critical_mass_parameter"] < data["unstable_above"]

@@ -20,7 +20,7 @@ from quenchsim.bearings.gas_journal.forces import attitude_deg, film_force
 from quenchsim.bearings.gas_journal.geometry import Bearing, grid_for_level
 from quenchsim.bearings.gas_journal.reynolds import check_inputs
 from quenchsim.bearings.gas_journal.transient import CrankNicolsonFilm, FilmState, film_frame
-from quenchsim.errors import SolverError, require
+from quenchsim.errors import InputError, SolverError, require
 
 # Dormand & Prince (1980) RK5(4)7M coefficients (J. Comput. Appl. Math. 6, 19-26)
 _C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
@@ -37,7 +37,8 @@ _B5 = np.array([35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0.0
 _B4 = np.array([5179 / 57600, 0.0, 7571 / 16695, 393 / 640, -92097 / 339200, 187 / 2100, 1 / 40])
 
 CONTACT_ECCENTRICITY = 0.95  # an orbit reaching this eccentricity is reported as unstable (touch-down)
-STEPS_PER_GROOVE_PASSAGE = 8  # largest time step of a grooved-rotor orbit, per groove passage
+STEPS_PER_GROOVE_PASSAGE = 4  # largest time step of a grooved-rotor orbit: 1/4 of a groove passage
+CENTRE_WINDOW = 4.0 * math.pi  # two half-frequency whirl periods (the rotor turns 2 rad per unit T)
 
 
 def mass_from_parameter(mass_parameter: float, bearing_number: float) -> float:
@@ -55,6 +56,7 @@ class OrbitResult:
     force: np.ndarray
     eccentricity: float
     attitude_deg: float
+    centre: tuple[float, float]
     settled: bool
     stable: bool
     whirl_ratio: float
@@ -69,35 +71,42 @@ class OrbitResult:
 
 
 def whirl_analysis(time: np.ndarray, x: np.ndarray, y: np.ndarray, centre: tuple[float, float]) -> tuple[float, float]:
-    """Growth rate of the orbit radius about ``centre`` (slope of log radius at its local maxima over
-    the second half of the run, per unit T) and the whirl frequency over the rotor speed
-    ((d phi / dT) / 2, since the rotor turns 2 rad per unit T; 0.5 = half-frequency whirl)."""
+    """Growth rate of the orbit about ``centre`` and the whirl frequency ratio.
+
+    Growth rate = ln(max radius over the last whirl period / max radius over the second one) divided
+    by the time between them (whirl period 2 pi in T: half-frequency whirl, the rotor turns 2 rad per
+    unit T); negative = decaying orbit. Window maxima make it insensitive to the groove-passage ripple.
+    Whirl ratio = mean angular speed of the orbit over the second half / 2 (0.5 = half-frequency whirl).
+    """
+    period = 2.0 * math.pi
     rx, ry = x - centre[0], y - centre[1]
     radius = np.hypot(rx, ry)
     half = time >= 0.5 * time[-1]
     phase = np.unwrap(np.arctan2(ry, rx))
     span = time[half][-1] - time[half][0]
     whirl = float((phase[half][-1] - phase[half][0]) / span / 2.0) if span > 0 else 0.0
-    r = radius[half]
-    t = time[half]
-    peaks = np.flatnonzero((r[1:-1] > r[:-2]) & (r[1:-1] >= r[2:])) + 1
-    if peaks.size >= 2:
-        growth = float(np.polyfit(t[peaks], np.log(r[peaks]), 1)[0])
-    else:
-        growth = float(np.polyfit(t, np.log(np.maximum(r, 1e-300)), 1)[0])
+    if time[-1] < 3.0 * period:
+        raise InputError("duration", float(time[-1]), f"must be >= 3 whirl periods (3 * 2 pi = {3 * period:.1f}) "
+                         "to classify an orbit")
+    early = radius[(time >= period) & (time <= 2.0 * period)].max()
+    late = radius[time >= time[-1] - period].max()
+    growth = float(math.log(max(late, 1e-300) / max(early, 1e-300)) / (time[-1] - 2.0 * period))
     return growth, whirl
 
 
 def orbit(bearing: Bearing, bearing_number: float, load: float, mass: float, level: int = 3,
           duration: float = 60.0, start: tuple[float, float] = (0.0, 0.0), load_angle_deg: float = -90.0,
-          method: str = "direct", rtol: float = 1e-6, atol: float = 1e-8, max_step: float = 0.5,
-          settle_tolerance: float = 1e-6, stop_when_settled: bool = True) -> OrbitResult:
+          method: str = "multigrid", rtol: float = 1e-4, atol: float = 1e-6, max_step: float = 0.5,
+          settle_tolerance: float = 1e-5, stop_when_settled: bool = True) -> OrbitResult:
     """Integrate the rotor orbit under the constant load ``load`` (= W/(pa L D), towards
     ``load_angle_deg``) with dimensionless mass M = ``mass`` from rest at ``start`` with P = 1.
 
     Stops at ``duration``, at touch-down (eccentricity >= CONTACT_ECCENTRICITY) or, with
-    ``stop_when_settled``, when both the speed and the net force stay below ``settle_tolerance``
-    (times max(load, 1)) for one unit of T (static equilibrium reached by the orbit method).
+    ``stop_when_settled``, when the rotor has settled: either the speed and the net force stay below
+    ``settle_tolerance`` (times max(load, 1)) for one unit of T, or (lightly damped whirl) the mean
+    position over the last CENTRE_WINDOW moved less than 10 * settle_tolerance from the window before
+    while the orbit shrinks. ``eccentricity``/``attitude_deg`` are those of the final position when
+    settled at rest, else of the orbit centre (mean position over the last window).
     """
     check_inputs(bearing_number, float(np.hypot(*start)))
     require(np.isfinite(mass) and mass > 0.0, "mass", mass, "must be > 0 (M = m c omega^2 / (8 pa L r))")
@@ -168,16 +177,40 @@ def orbit(bearing: Bearing, bearing_number: float, load: float, mass: float, lev
                         break
             else:
                 quiet_since = None
+            if stop_when_settled and t >= 3.0 * CENTRE_WINDOW and _centre_converged(times, xs, ys, settle_tolerance):
+                settled = True
+                break
         else:
             rejected += 1
         factor = 5.0 if norm == 0.0 else min(5.0, max(0.2, 0.9 * norm ** -0.2))
         h = min(h * factor, max_step)
     time_arr, x_arr, y_arr = np.array(times), np.array(xs), np.array(ys)
     force_arr = np.array(forces)
-    disp = np.array([x_arr[-1], y_arr[-1]])
-    centre = (float(np.mean(x_arr[time_arr >= 0.5 * time_arr[-1]])), float(np.mean(y_arr[time_arr >= 0.5 * time_arr[-1]])))
-    growth, whirl = whirl_analysis(time_arr, x_arr, y_arr, centre if load == 0.0 else centre)
+    last = time_arr >= time_arr[-1] - CENTRE_WINDOW
+    centre = (float(np.mean(x_arr[last])), float(np.mean(y_arr[last])))
+    if touched:
+        growth, whirl = float("inf"), float("nan")
+    elif time_arr[-1] >= 3.0 * CENTRE_WINDOW / 2.0:
+        growth, whirl = whirl_analysis(time_arr, x_arr, y_arr, centre)
+    else:
+        growth, whirl = float("nan"), float("nan")
     stable = (not touched) and (settled or growth < 0.0)
+    at_rest = quiet_since is not None
+    disp = np.array([x_arr[-1], y_arr[-1]]) if at_rest else np.array(centre)
     return OrbitResult(time_arr, x_arr, y_arr, force_arr, float(np.hypot(*disp)),
-                       attitude_deg(disp, -f_ext) if load > 0.0 else float("nan"),
+                       attitude_deg(disp, -f_ext) if load > 0.0 else float("nan"), centre,
                        settled, stable, whirl, growth, steps, rejected)
+
+
+def _centre_converged(times: list[float], xs: list[float], ys: list[float], tol: float) -> bool:
+    """Mean positions over the last two CENTRE_WINDOWs agree within 10 tol and the orbit shrinks."""
+    t = np.asarray(times)
+    x = np.asarray(xs)
+    y = np.asarray(ys)
+    w1 = t >= t[-1] - CENTRE_WINDOW
+    w0 = (t >= t[-1] - 2.0 * CENTRE_WINDOW) & ~w1
+    c1 = np.array([x[w1].mean(), y[w1].mean()])
+    c0 = np.array([x[w0].mean(), y[w0].mean()])
+    r1 = np.max(np.hypot(x[w1] - c1[0], y[w1] - c1[1]))
+    r0 = np.max(np.hypot(x[w0] - c1[0], y[w0] - c1[1]))
+    return bool(np.hypot(*(c1 - c0)) < 10.0 * tol and r1 < r0)

@@ -49,13 +49,15 @@ def _displacement(eccentricity: float, angle_deg: float) -> tuple[float, float]:
 
 def _steady(bearing: Bearing, grid: Grid, bearing_number: float, disp: tuple[float, float], method: str,
             p0: np.ndarray | None, sor_omega: float) -> StaticResult:
+    """Steady film (plain bearing or grooved sleeve; for a grooved rotor: the film frozen at T = 0)."""
     start = time.perf_counter()
-    ops = operator_hierarchy(bearing, grid, bearing_number, disp)
+    frame = film_frame(bearing, 0.0)
+    ops = operator_hierarchy(bearing, grid, bearing_number, disp, frame)
     res = solve(ops, method, p0=p0, omega=sor_omega)
     if not res.converged:
         raise SolverError(f"{method} did not reach ||R||_2 <= 1e-5 (stopped at {res.residual:.3g} after "
                           f"{res.iterations} iterations)")
-    force = film_force(grid, res.p)
+    force = film_force(grid, res.p, frame)
     return StaticResult(float(np.hypot(*force)), attitude_deg(np.array(disp), force), (force[0], force[1]), disp,
                         res.p, grid, res.iterations, res.residual, time.perf_counter() - start, res.work_units)
 

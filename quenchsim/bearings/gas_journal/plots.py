@@ -1,0 +1,100 @@
+"""Figures of the gas journal bearing module (matplotlib, Agg backend): pressure field, load and
+attitude curves, orbits, stability trials, grid convergence, narrow-groove limit and solver timings."""
+
+from __future__ import annotations
+
+import pathlib
+from collections.abc import Sequence
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from quenchsim.bearings.gas_journal.geometry import Grid  # noqa: E402
+
+
+def _save(fig, path: pathlib.Path) -> pathlib.Path:
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def pressure_field(grid: Grid, p: np.ndarray, title: str, path: pathlib.Path) -> pathlib.Path:
+    """P over the sleeve angle and Z (half bearing, end at Z = 0, mid-plane at the top)."""
+    jj, ii = np.meshgrid(np.arange(grid.n_eta + 1), np.arange(grid.n_xi + 1), indexing="ij")
+    theta = np.degrees(grid.theta(ii.astype(float), jj.astype(float)))
+    z = jj * grid.h_eta
+    pp = np.concatenate([p, p[:, :1]], axis=1)
+    fig, ax = plt.subplots(figsize=(8, 3.2))
+    mesh = ax.pcolormesh(theta, z, pp, shading="gouraud", cmap="viridis")
+    fig.colorbar(mesh, ax=ax, label="P = p / pa")
+    ax.set_xlabel("theta (deg, grid frame; skewed grid lines follow the grooves)")
+    ax.set_ylabel("Z = z / r")
+    ax.set_title(title)
+    return _save(fig, path)
+
+
+def load_curves(curves: dict[float, tuple[np.ndarray, np.ndarray, np.ndarray]], raimondi: Sequence[tuple],
+                path: pathlib.Path) -> pathlib.Path:
+    """Load and attitude vs eccentricity per bearing number, with Raimondi's points."""
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(9, 3.6))
+    for lam, (eps, load, att) in curves.items():
+        line, = a1.plot(eps, load, label=f"Lambda = {lam:g}")
+        a2.plot(eps, att, color=line.get_color())
+        pts = [r for r in raimondi if r[0] == lam]
+        a1.plot([r[1] for r in pts], [r[2] for r in pts], "o", color=line.get_color())
+        a2.plot([r[1] for r in pts], [r[3] for r in pts], "o", color=line.get_color())
+    a1.set_xlabel("eccentricity ratio")
+    a1.set_ylabel("F = W / (pa L D)")
+    a2.set_xlabel("eccentricity ratio")
+    a2.set_ylabel("attitude angle (deg)")
+    a1.legend()
+    a1.set_title("plain bearing L/D = 1 (lines) vs Raimondi (dots)")
+    return _save(fig, path)
+
+
+def orbits(runs: Sequence[tuple[str, np.ndarray, np.ndarray]], path: pathlib.Path) -> pathlib.Path:
+    """Rotor-centre orbits (displacement over clearance) with the clearance circle."""
+    fig, ax = plt.subplots(figsize=(5, 5))
+    t = np.linspace(0, 2 * np.pi, 200)
+    ax.plot(np.cos(t), np.sin(t), "k-", lw=0.8)
+    for label, x, y in runs:
+        ax.plot(x, y, lw=0.8, label=label)
+        ax.plot(x[-1], y[-1], "k.")
+    ax.set_aspect("equal")
+    ax.set_xlabel("e_x / c")
+    ax.set_ylabel("e_y / c")
+    ax.legend(fontsize=7)
+    return _save(fig, path)
+
+
+def stability_trials(trials: Sequence[tuple[float, bool, float, float]], critical: float, title: str,
+                     path: pathlib.Path) -> pathlib.Path:
+    """Orbit growth rate vs mass parameter for every bisection trial (stability map at one Lambda)."""
+    fig, ax = plt.subplots(figsize=(6, 3.6))
+    for mbar, stable, growth, _ in trials:
+        ax.semilogx(mbar, growth, "o", color="tab:green" if stable else "tab:red")
+    ax.axvline(critical, color="k", ls="--", label=f"critical Mbar = {critical:.3g}")
+    ax.axhline(0.0, color="gray", lw=0.8)
+    ax.set_xlabel("mass parameter Mbar")
+    ax.set_ylabel("orbit growth rate (1 / T)")
+    ax.set_title(title)
+    ax.legend()
+    return _save(fig, path)
+
+
+def convergence(series: dict[str, tuple[np.ndarray, np.ndarray]], xlabel: str, ylabel: str, title: str,
+                path: pathlib.Path, loglog: bool = True) -> pathlib.Path:
+    """Generic convergence plot: one line per series."""
+    fig, ax = plt.subplots(figsize=(6, 3.8))
+    for label, (x, y) in series.items():
+        (ax.loglog if loglog else ax.plot)(x, y, "o-", label=label)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(fontsize=8)
+    ax.grid(True, which="both", alpha=0.3)
+    return _save(fig, path)
