@@ -89,7 +89,8 @@ def hardness_traverse(depth_mm: np.ndarray, curves: dict[str, np.ndarray], thres
 
 def distortion(r_before_mm: np.ndarray, z_before_mm: np.ndarray, r_after_mm: np.ndarray, z_after_mm: np.ndarray,
                title: str, source: str) -> bytes:
-    """The pre-quench section outline and the after-quench outline with the displacement x10."""
+    """Left: the pre-quench section outline and the after-quench outline with the displacement x10.
+    Right: the radial displacement of the bore and OD faces against height (taper, barrelling) in um."""
     def closed(a: np.ndarray) -> np.ndarray:
         return np.append(a, a[:1])
 
@@ -97,15 +98,29 @@ def distortion(r_before_mm: np.ndarray, z_before_mm: np.ndarray, r_after_mm: np.
     z_mag = z_before_mm + DISTORTION_SCALE * (z_after_mm - z_before_mm)
     height = np.ptp(z_before_mm) or 1.0
     width = np.ptp(r_before_mm) or 1.0
-    fig, ax = plt.subplots(figsize=(5.5, float(np.clip(4.5 * height / width, 3.5, 8.0))))
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10.0, float(np.clip(4.5 * height / width, 4.0, 8.0))),
+                                  gridspec_kw={"width_ratios": [1.0, 1.3]})
     ax.plot(closed(r_before_mm), closed(z_before_mm), "k-", lw=1.0, label="before quench")
     ax.plot(closed(r_mag), closed(z_mag), "r-", lw=1.4, label=f"after quench, displacement x{DISTORTION_SCALE:g}")
     ax.set_aspect("equal")
     ax.set_xlabel("r (mm)")
     ax.set_ylabel("z (mm)")
-    ax.set_title(f"Distortion: {title}\n({source})", fontsize=9)
+    ax.set_title(f"Section outline ({source})", fontsize=9)
     ax.grid(True, lw=0.3)
-    ax.legend(fontsize=8, loc="best")
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12))
+    tol = 1e-3 * width
+    for face, r_face, style in (("bore", r_before_mm.min(), "b.-"), ("OD", r_before_mm.max(), "g.-")):
+        on = np.abs(r_before_mm - r_face) < tol
+        order = np.argsort(z_before_mm[on])
+        ax2.plot(1e3 * (r_after_mm[on] - r_before_mm[on])[order], z_before_mm[on][order], style, ms=3,
+                 label=f"{face} face")
+    ax2.axvline(0.0, color="k", lw=0.6)
+    ax2.set_xlabel("radial displacement after - before (um)")
+    ax2.set_ylabel("z before quench (mm)")
+    ax2.set_title("Radial displacement of the bore and OD faces", fontsize=9)
+    ax2.grid(True, lw=0.3)
+    ax2.legend(fontsize=8)
+    fig.suptitle(f"Distortion: {title}", fontsize=10)
     fig.tight_layout()
     return _png(fig)
 

@@ -111,6 +111,11 @@ def _summary_tables(run: RunData) -> list[Item]:
         text += (f" Solver: {fmt(solver.get('steps'))} steps, {fmt(solver.get('dofs'))} dofs, "
                  f"wall time {fmt(solver.get('wall_time_s'))} s.")
     items.append(Item("text", "Status", text=text))
+    views = [name for name in ("results.pvd", "final_3d.vtu") if (run.path / name).is_file()]
+    if views:
+        items.append(Item("text", "ParaView", text=f"For ParaView: {' and '.join(views)} in {run.path} "
+                                                   "(results.pvd: the r-z section over time, x = r, y = z in m; "
+                                                   "final_3d.vtu: the final state revolved into a 3-D sector)."))
     probes = s.get("probes", {})
     if probes:
         items.append(Item("table", "Probe cooling times (s)", header=["probe", "to 500 C", "to 300 C", "t8/5"],
