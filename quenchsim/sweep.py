@@ -26,7 +26,10 @@ to dotted column names -- and is rewritten atomically after every case. A case w
 
 Execution: Dask distributed -- a ``LocalCluster`` (``workers`` processes, one thread each) or an
 existing scheduler by address; ``workers=0`` runs the cases one after another in this process
-(the serial reference of the speed-up measurement, and for debugging).
+(the serial reference of the speed-up measurement, and for debugging). The base case table is sent
+to the workers, but each worker writes its case folder itself: with workers on other machines the
+output directory must be on a file system they share (the same absolute path everywhere), and they
+need the same quenchsim installed.
 """
 
 from __future__ import annotations
