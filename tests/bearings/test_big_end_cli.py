@@ -76,3 +76,13 @@ def test_missing_mode_section_and_clearance_set(capsys):
     assert "mode" in capsys.readouterr().err
     assert main(["bearings", "big-end", str(CASE), "--clearance-set", "7", "--json"]) == 2
     assert "clearance_set" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("case,mode,set_number", [(CASE, "static", "2"), (RIG, "rig", "1")])
+def test_cli_static_and_rig_modes(capsys, case, mode, set_number):
+    code = main(["bearings", "big-end", str(case), "--mode", mode, "--clearance-set", set_number,
+                 "--revolutions", "0.05", "--json"])
+    assert code == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["mode"] == mode and out["integrator"] == "LSODA"
+    assert out["pocket_force_N"]["max"] >= out["pocket_force_N"]["mean_abs"] >= 0.0
