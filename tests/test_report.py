@@ -96,6 +96,15 @@ def test_missing_outputs_are_named(dirs, tmp_path):
         assert f"no {name}" in html
 
 
+def test_several_runs_are_compared(dirs, tmp_path):
+    other = tmp_path / "other"
+    shutil.copytree(dirs["run"], other)
+    html = write_report([dirs["run"], other], tmp_path / "c.html")[0].read_text()
+    images = _images(html)
+    assert {"Cooling curves compared", "Hardness-depth traverses compared"} <= set(images)
+    assert html.count("<figcaption>Cooling curves at the probes</figcaption>") == 2
+
+
 def test_sweep_report_plots_outputs_against_the_swept_input(report):
     html = report[0].read_text()
     assert "Responses against quench.time_s" in _images(html)

@@ -140,6 +140,31 @@ def stress_traverse(r_mm: np.ndarray, curves: dict[str, np.ndarray], title: str)
     return _png(fig)
 
 
+def compare_curves(panels: dict[str, dict[str, tuple[np.ndarray, np.ndarray]]], xlabel: str, ylabel: str,
+                   title: str, log_x: bool = False) -> bytes:
+    """One panel per key of ``panels``; in each, one curve ``label: (x, y)`` per run."""
+    n = len(panels)
+    ncol = min(3, n)
+    nrow = -(-n // ncol)
+    fig, axes = plt.subplots(nrow, ncol, figsize=(4.4 * ncol, 3.4 * nrow), squeeze=False)
+    for ax, (name, curves) in zip(axes.ravel(), panels.items()):
+        for label, (x, y) in curves.items():
+            ax.plot(np.where(x > 0, x, np.nan) if log_x else x, y, label=label)
+        if log_x:
+            ax.set_xscale("log")
+        ax.set_title(name, fontsize=9)
+        ax.set_xlabel(xlabel, fontsize=8)
+        ax.set_ylabel(ylabel, fontsize=8)
+        ax.tick_params(labelsize=7)
+        ax.grid(True, which="both", lw=0.3)
+    for ax in axes.ravel()[n:]:
+        ax.set_visible(False)
+    axes[0][0].legend(fontsize=7)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    return _png(fig)
+
+
 def responses(rows: list[dict[str, Any]], x: str, group_by: list[str], outputs: list[str], title: str) -> bytes:
     """Each output against swept input ``x``; one line per combination of the other swept inputs."""
     n = len(outputs)

@@ -269,9 +269,26 @@ def comparison_section(runs: list[RunData]) -> Section:
             d = d.get(k) if isinstance(d, dict) else None
         return d
 
-    return Section("Comparison of the runs", [Item("table", "Key outputs", header=["run", *[k for k, _ in keys]],
-                                                   rows=[[r.title, *[get(r.summary or {}, p) for _, p in keys]]
-                                                         for r in runs])])
+    items = [Item("table", "Key outputs", header=["run", *[k for k, _ in keys]],
+                  rows=[[r.title, *[get(r.summary or {}, p) for _, p in keys]] for r in runs])]
+    labels = [f"{r.title} ({r.path.name})" for r in runs]
+    probes = [n for n in dict.fromkeys(k for r in runs if r.probes for k in r.probes) if n != "time_s"]
+    panels = {name[:-2] if name.endswith("_C") else name:
+              {label: (r.probes["time_s"], r.probes[name]) for label, r in zip(labels, runs)
+               if r.probes and name in r.probes} for name in probes}
+    if panels:
+        items.append(Item("image", "Cooling curves compared",
+                          image=plots.compare_curves(panels, "time (s)", "temperature (C)",
+                                                     "Cooling curves at the probes, run by run", log_x=True)))
+    traverse = {side: {label: (r.hardness_traverse["depth_mm"], r.hardness_traverse[col])
+                       for label, r in zip(labels, runs) if r.hardness_traverse and col in r.hardness_traverse}
+                for side, col in (("from the bore", "HRC_from_bore"), ("from the OD", "HRC_from_od"))}
+    traverse = {k: v for k, v in traverse.items() if v}
+    if traverse:
+        items.append(Item("image", "Hardness-depth traverses compared",
+                          image=plots.compare_curves(traverse, "depth at mid-width (mm)", "hardness (HRC)",
+                                                     "Hardness-depth traverses, run by run")))
+    return Section("Comparison of the runs", items)
 
 
 # -- rendering ------------------------------------------------------------------------------------------
