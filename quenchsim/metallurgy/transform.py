@@ -68,7 +68,7 @@ def initial_state(shape: tuple[int, ...], kin: Kinetics) -> PhaseState:
 
 def _diffusional_increments(kin: Kinetics, q: dict[str, np.ndarray], Ta: np.ndarray, Tb: np.ndarray,
                             h: np.ndarray) -> dict[str, np.ndarray]:
-    """Increase dq_i of q_i = -ln(1 - xi_i) of each reaction over sub-steps [Ta, Tb] of length h (updates q in place).
+    """Increments dq_i of q_i = -ln(1 - xi_i) of each reaction over sub-steps [Ta, Tb] of length h (updates q in place).
 
     Only points whose sub-step reaches below the reaction's upper temperature are evaluated.
     """
