@@ -1,19 +1,16 @@
 """Ring dimensions from a (deformed) section, section outline and nodal output fields."""
 
-import tomllib
-
 import numpy as np
 import pytest
 
-from quenchsim.materials import materials_dir
+from quenchsim.materials import load_material
 from quenchsim.mechanics import (MechanicsSolver, dimension_change, load_mechanics, ring_dimensions,
                                  section_outline)
 from quenchsim.mechanics import verification as v
 
 
 def _model():
-    with (materials_dir() / "SUJ3.mechanics.toml").open("rb") as fh:
-        return load_mechanics({"name": "SUJ3", "mechanics": tomllib.load(fh)}, {"plasticity": False, "trip": False})
+    return load_mechanics(load_material("SUJ3"), {"plasticity": False, "trip": False})
 
 
 def test_undeformed_rectangle_dimensions():

@@ -1,8 +1,6 @@
 """Material model of the mechanics: loader errors, free strain bookkeeping, TRIP kinetics and the
 fate of accumulated hardening when a phase transforms."""
 
-import tomllib
-
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -10,7 +8,7 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 
 from quenchsim.errors import InputError
-from quenchsim.materials import PHASES, materials_dir, parse_property
+from quenchsim.materials import PHASES, load_material, parse_property
 from quenchsim.mechanics import austenitized_scale, free_strain, load_mechanics
 from quenchsim.mechanics import verification as v
 from quenchsim.mechanics.model import (LEBLOND_CUTOFF, free_strain_increment, integrate_property,
@@ -19,8 +17,7 @@ from quenchsim.mechanics.solver import MechanicsSolver
 
 
 def _raw(name):
-    with (materials_dir() / f"{name}.mechanics.toml").open("rb") as fh:
-        return {"name": name, "mechanics": tomllib.load(fh)}
+    return load_material(name)
 
 
 SUJ3 = load_mechanics(_raw("SUJ3"), {})
@@ -29,8 +26,8 @@ FURLAN = load_mechanics(_raw("100Cr6_furlan"), {"plasticity": False, "trip": Fal
 
 def test_specific_volume_free_strain_closed_form():
     # linear free strain of martensite at 20 C relative to austenite at 850 C, from the file's numbers
-    mech = _raw("SUJ3")["mechanics"]["free_strain"]
-    c_b, c_m = 1.0, mech["carbon_matrix_wt_pct"]["value"]
+    aus = _raw("SUJ3")["austenitisation"]
+    c_b, c_m = 1.0, float(np.interp(850.0, aus["T_aust_C"], aus["dissolved_wt"]["C"]))  # the metallurgy's value
     phi_c = (c_b - c_m) / (6.67 - c_m) * 1.021
     dv = (1 - phi_c) * (4.64 - 0.53 * c_m) / 100
     expected = (1 + dv) ** (1 / 3) * (1 + 11.7e-6 * 0.0) / (1 + 22.2e-6 * 830) - 1
@@ -124,7 +121,7 @@ def test_hardening_after_transformation(memory):
     material = v.uniform_material(E, 0.3, alpha, yield_Pa=sy, hardening_Pa=H, hardening_memory=memory)
     model = load_mechanics(material, {"trip": False})
     mesh = v.tube_mesh(0.0, 0.01, 0.02, 1)
-    ends = {"z": np.concatenate([v._nodes_at_mesh(mesh, 1, 0.0), v._nodes_at_mesh(mesh, 1, 0.02)])}
+    ends = {"z": np.concatenate([v.nodes_on_line(mesh, 1, 0.0), v.nodes_on_line(mesh, 1, 0.02)])}
     solver = MechanicsSolver(mesh, model, fixed_point=(0.0, 0.0), dirichlet=ends)
     T0, X0 = v.uniform_fields(solver, v.T_REF_C, 0.0)
     T1, _ = v.uniform_fields(solver, v.T_REF_C + 200.0, 0.0)
@@ -137,3 +134,19 @@ def test_hardening_after_transformation(memory):
     p_after = p_reset + H * (p_before - p_reset) / (E + H)
     np.testing.assert_allclose(solver.quadrature_state["equivalent_plastic_strain"], p_after, rtol=1e-9)
     np.testing.assert_allclose(solver.stress_Pa["zz"], -(sy + H * p_after), rtol=1e-9)
+
+
+def test_matrix_carbon_follows_the_austenitising_temperature():
+    # more carbon dissolved at 860 C than at 830 C: smaller A -> M and A -> F+C volume changes
+    low = load_mechanics(_raw("SUJ3"), {"austenitizing_T_C": 830.0})
+    high = load_mechanics(_raw("SUJ3"), {"austenitizing_T_C": 860.0})
+    aus = _raw("SUJ3")["austenitisation"]
+    for model, T in ((low, 830.0), (high, 860.0)):
+        c_m = float(np.interp(T, aus["T_aust_C"], aus["dissolved_wt"]["C"]))
+        phi_c = (1.0 - c_m) / (6.67 - c_m) * 1.021
+        assert model.volume_change["martensite"] == pytest.approx((1 - phi_c) * (4.64 - 0.53 * c_m) / 100, rel=1e-12)
+    raw = _raw("SUJ3")
+    raw.pop("austenitisation")
+    with pytest.raises(InputError) as err:
+        load_mechanics(raw, {})
+    assert err.value.field == "SUJ3.mechanics.free_strain.carbon_matrix_wt_pct"

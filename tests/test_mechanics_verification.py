@@ -1,19 +1,16 @@
 """Verification of the axisymmetric mechanics solver against closed-form solutions
 (formulas and sources in quenchsim/mechanics/verification.py)."""
 
-import tomllib
-
 import numpy as np
 import pytest
 
-from quenchsim.materials import materials_dir
+from quenchsim.materials import load_material
 from quenchsim.mechanics import load_mechanics
 from quenchsim.mechanics import verification as v
 
 
 def _material(name):
-    with (materials_dir() / f"{name}.mechanics.toml").open("rb") as fh:
-        return {"name": name, "mechanics": tomllib.load(fh)}
+    return load_material(name)
 
 
 def test_lame_thick_cylinder_internal_pressure_converges():

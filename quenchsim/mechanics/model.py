@@ -201,7 +201,30 @@ def _number(table: Mapping[str, Any], key: str, prefix: str, lo: float = -np.inf
     return float(value)
 
 
-def _volume_changes(fs: Mapping[str, Any], prefix: str) -> dict[str, float]:
+def _carbon(fs: Mapping[str, Any], key: str, prefix: str, material: Mapping[str, Any], T_aust_C: float) -> float:
+    """A carbon content: a number, or "composition" (bulk C of the material's [composition]), or
+    "austenitisation" (C dissolved in austenite at T_aust, interpolated in the material's
+    [austenitisation] dissolved_wt.C over T_aust_C -- the value the metallurgy uses)."""
+    spec = fs.get(key)
+    if isinstance(spec, Mapping):
+        spec = spec.get("value")
+    if spec == "composition":
+        value = material.get("composition", {}).get("C")
+    elif spec == "austenitisation":
+        aus = material.get("austenitisation", {})
+        try:
+            value = float(np.interp(T_aust_C, np.asarray(aus["T_aust_C"], dtype=float),
+                                    np.asarray(aus["dissolved_wt"]["C"], dtype=float)))
+        except (KeyError, TypeError, ValueError):
+            raise InputError(f"{prefix}.{key}", spec, "the material has no [austenitisation] T_aust_C + dissolved_wt.C") from None
+    else:
+        return _number(fs, key, prefix, 0.0, 2.1)
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0.0 <= value <= 2.1:
+        raise InputError(f"{prefix}.{key}", spec, f"resolves to {value!r}, not a carbon content in [0, 2.1] wt%")
+    return float(value)
+
+
+def _volume_changes(fs: Mapping[str, Any], prefix: str, material: Mapping[str, Any], T_aust_C: float) -> dict[str, float]:
     """dV/V of austenite -> phase at reference_T_C, diluted by the undissolved carbide.
 
     The matrix of the austenite holds carbon_matrix_wt_pct; the rest of the carbon stays as
@@ -209,8 +232,10 @@ def _volume_changes(fs: Mapping[str, Any], prefix: str) -> dict[str, float]:
     part in any transformation, so dV/V of the mixture is (1 - phi_c) (a_i + b_i C_m)/100 with the
     carbide volume fraction phi_c = w_c * rho_steel/rho_cementite.
     """
-    c_bulk = _number(fs, "carbon_bulk_wt_pct", prefix, 0.0, 2.1)
-    c_m = _number(fs, "carbon_matrix_wt_pct", prefix, 0.0, c_bulk)
+    c_bulk = _carbon(fs, "carbon_bulk_wt_pct", prefix, material, T_aust_C)
+    c_m = _carbon(fs, "carbon_matrix_wt_pct", prefix, material, T_aust_C)
+    if c_m > c_bulk:
+        raise InputError(f"{prefix}.carbon_matrix_wt_pct", c_m, f"must not exceed carbon_bulk_wt_pct = {c_bulk}")
     c_cem = _number(fs, "cementite_carbon_wt_pct", prefix, c_bulk, 100.0)
     ratio = _number(fs, "steel_to_cementite_density_ratio", prefix, 0.5, 2.0)
     phi_c = (c_bulk - c_m) / (c_cem - c_m) * ratio
@@ -267,7 +292,7 @@ def load_mechanics(material: Mapping[str, Any], options: Mapping[str, Any] | Non
     if alpha.phase_dependent and any(alpha.for_phase(p).phase_dependent for p in PHASES):
         raise InputError(f"{fs_prefix}.alpha_1_K", "nested per_phase", "per-phase entries must be constants, tables or polynomials")
     if form == "specific_volume":
-        volume_change = _volume_changes(fs, fs_prefix)
+        volume_change = _volume_changes(fs, fs_prefix, material, T_aust)
         gamma = None
         ref_T = _number(fs, "reference_T_C", fs_prefix, -273.15, 1500.0)
     else:

@@ -3,8 +3,9 @@
 Unknown: the displacement (u_r, u_z) from the hot (austenitised, stress-free) geometry on quadratic
 triangles.  Per step the material-point state (free strain, plastic and TRIP strain tensors,
 equivalent plastic strain, stress) is advanced by :func:`~quenchsim.mechanics.constitutive.return_map`
-inside a full Newton iteration with the consistent tangent; the state is committed only when Newton
-converges, so the caller can cut the step and retry.
+inside a Newton iteration with the consistent tangent (inexact linear solves by LU-preconditioned CG,
+a predictor from the previous increment, residual line search); the state is committed only when
+Newton converges, so the caller can cut the step and retry.
 
 Rigid-body motion: u_r = 0 on nodes on the axis (r = 0, solid parts); axial rigid motion is removed by
 fixing u_z of one node (``fixed_point``, or the node nearest the section centroid).  There is no
@@ -24,7 +25,7 @@ from skfem import Basis, ElementTriP1, ElementTriP2, MeshTri
 from quenchsim.errors import InputError
 from quenchsim.materials import PHASES
 from quenchsim.mechanics.assembly import INTORDER, AxisymmetricAssembler
-from quenchsim.mechanics.constitutive import M_VEC, SQRT2, lame_bulk_shear, return_map, von_mises
+from quenchsim.mechanics.constitutive import M_VEC, SQRT2, PointUpdate, lame_bulk_shear, return_map, von_mises
 from quenchsim.mechanics.model import MechanicsModel, free_strain, free_strain_increment, trip_saturation
 
 LINEAR_RTOL = 1e-10
@@ -120,8 +121,9 @@ class MechanicsSolver:
 
     def __init__(self, mesh: MeshTri, model: MechanicsModel, fixed_point: tuple[float, float] | None = None,
                  *, dirichlet: Mapping[str, np.ndarray] | None = None) -> None:
-        """``dirichlet`` optionally adds homogeneous constraints {"r" | "z": vertex/node indices of
-        ``basis.doflocs`` columns // 2}, e.g. u_z = 0 on both ends for plane strain."""
+        """``fixed_point`` (r_m, z_m): the vertex nearest to it has u_z = 0 (default: nearest the section
+        centroid).  ``dirichlet`` optionally adds homogeneous constraints {"r" | "z": P2 node indices k}
+        (node k has DOFs 2k, 2k+1 and sits at ``basis.doflocs[:, 2k]``), e.g. u_z = 0 on both ends."""
         if np.any(mesh.p[0] < -AXIS_TOLERANCE * np.ptp(mesh.p[0])):
             raise InputError("mesh", float(mesh.p[0].min()), "radial coordinates must be >= 0 (x = r)")
         self.mesh = mesh
@@ -163,7 +165,7 @@ class MechanicsSolver:
             fixed.append(2 * np.asarray(nodes, dtype=int) + (comp == "z"))
         return np.unique(np.concatenate(fixed))
 
-    def _vertex_projector(self):
+    def _vertex_projector(self) -> tuple[sp.csr_matrix, spla.SuperLU]:
         """L2 projection (area weighted) of quadrature values onto the P1 vertex field: the matrix of
         int phi_i f dA and the factorised P1 mass matrix."""
         p1 = self._p1 = Basis(self.mesh, ElementTriP1(), intorder=INTORDER)
@@ -185,7 +187,7 @@ class MechanicsSolver:
 
         Arrays are shaped (n_elements, n_quadrature_points) of ``Basis(mesh, ElementTriP2(), intorder=4)``.
         ``external_force_N`` is a nodal load vector per radian (e.g. from
-        :func:`quenchsim.mechanics.loads.pressure_load`) at the end of the step.
+        :func:`quenchsim.mechanics.loads.surface_load`) at the end of the step.
         """
         model, asm, st = self.model, self.asm, self._state
         shape = asm.radius.shape
@@ -262,7 +264,7 @@ class MechanicsSolver:
             history.append(norm)
         return StepInfo(False, model.max_newton_iterations, norm, 0, 0.0, tuple(history))
 
-    def _commit(self, u: np.ndarray, free1: np.ndarray, update, eq_plastic: np.ndarray) -> None:
+    def _commit(self, u: np.ndarray, free1: np.ndarray, update: PointUpdate, eq_plastic: np.ndarray) -> None:
         st = self._state
         self.displacement_m = u
         st.free = free1

@@ -72,7 +72,8 @@ def tube_mesh(a: float, b: float, h: float, n_r: int) -> MeshTri:
     return MeshTri.init_tensor(np.linspace(a, b, n_r + 1), np.linspace(0.0, h, n_z + 1))
 
 
-def _facets_at(mesh: MeshTri, axis: int, value: float) -> np.ndarray:
+def facets_on_line(mesh: MeshTri, axis: int, value: float) -> np.ndarray:
+    """Boundary or interior facets lying on the coordinate line x[axis] = value."""
     return mesh.facets_satisfying(lambda x: np.isclose(x[axis], value, rtol=0.0, atol=1e-12))
 
 
@@ -109,7 +110,7 @@ def run_lame(n_r: int, a: float = 0.1, b: float = 0.2, h: float = 0.1, p: float 
     model = load_mechanics(uniform_material(E, nu), {"plasticity": False, "trip": False})
     solver = MechanicsSolver(mesh, model, fixed_point=(a, 0.0))
     T, X = uniform_fields(solver, T_REF_C)
-    info = solver.step(T, X, T, X, external_force_N=surface_load(mesh, _facets_at(mesh, 0, a), pressure_Pa=p))
+    info = solver.step(T, X, T, X, external_force_N=surface_load(mesh, facets_on_line(mesh, 0, a), pressure_Pa=p))
     assert info.converged
     exact = lame_exact(solver.asm.radius, a, b, p, E, nu)
     comparison = _compare(solver, {k: exact[k] for k in ("rr", "tt", "zz")}, p)
@@ -139,7 +140,7 @@ def run_log_thermal(n_r: int, a: float = 0.1, b: float = 0.2, h: float = 0.05, t
     from the stress-free state; stresses relative to alpha E |tau_a|."""
     mesh = tube_mesh(a, b, h, n_r)
     model = load_mechanics(uniform_material(E, nu, alpha), {"plasticity": False, "trip": False})
-    ends = {"z": np.concatenate([_nodes_at_mesh(mesh, 1, 0.0), _nodes_at_mesh(mesh, 1, h)])}
+    ends = {"z": np.concatenate([nodes_on_line(mesh, 1, 0.0), nodes_on_line(mesh, 1, h)])}
     solver = MechanicsSolver(mesh, model, fixed_point=(a, 0.0), dirichlet=ends)
     r = solver.asm.radius
     T0, X = uniform_fields(solver, T_REF_C)
@@ -148,7 +149,7 @@ def run_log_thermal(n_r: int, a: float = 0.1, b: float = 0.2, h: float = 0.05, t
     return _compare(solver, log_thermal_exact(r, a, b, tau_a, E, nu, alpha), alpha * E * abs(tau_a))
 
 
-def _nodes_at_mesh(mesh: MeshTri, axis: int, value: float) -> np.ndarray:
+def nodes_on_line(mesh: MeshTri, axis: int, value: float) -> np.ndarray:
     """P2 node indices (columns of the vector basis doflocs // 2) on a coordinate line."""
     locs = Basis(mesh, ElementVector(ElementTriP2()), intorder=1).doflocs
     return np.flatnonzero(np.isclose(locs[axis, 0::2], value, rtol=0.0, atol=1e-12))
@@ -172,7 +173,7 @@ def run_restrained_bar(n_steps: int, dT_max: float = 300.0, E: float = 2.0e11, n
     largest radial/hoop stress (zero exactly) and the Newton iteration counts."""
     mesh = tube_mesh(0.0, R, L, 2)
     model = load_mechanics(uniform_material(E, nu, alpha, yield_Pa=sigma_y, hardening_Pa=H), {"trip": False})
-    ends = {"z": np.concatenate([_nodes_at_mesh(mesh, 1, 0.0), _nodes_at_mesh(mesh, 1, L)])}
+    ends = {"z": np.concatenate([nodes_on_line(mesh, 1, 0.0), nodes_on_line(mesh, 1, L)])}
     solver = MechanicsSolver(mesh, model, fixed_point=(0.0, 0.0), dirichlet=ends)
     path = np.concatenate([np.linspace(0.0, dT_max, n_steps + 1), np.linspace(dT_max, 0.0, n_steps + 1)[1:]])
     iterations, history = [], []
@@ -201,9 +202,9 @@ def run_limit_pressure(factor: float, n_r: int = 6, a: float = 0.1, b: float = 0
     model = load_mechanics(uniform_material(E, nu, yield_Pa=sigma_y, hardening_Pa=0.0),
                            {"trip": False, "max_newton_iterations": 40})
     h = 0.25 * (b - a)
-    ends = {"z": np.concatenate([_nodes_at_mesh(mesh, 1, 0.0), _nodes_at_mesh(mesh, 1, h)])}
+    ends = {"z": np.concatenate([nodes_on_line(mesh, 1, 0.0), nodes_on_line(mesh, 1, h)])}
     solver = MechanicsSolver(mesh, model, fixed_point=(a, 0.0), dirichlet=ends)
-    unit = surface_load(mesh, _facets_at(mesh, 0, a), pressure_Pa=1.0)
+    unit = surface_load(mesh, facets_on_line(mesh, 0, a), pressure_Pa=1.0)
     p_limit = 2.0 / np.sqrt(3.0) * sigma_y * np.log(b / a)
     T, X = uniform_fields(solver, T_REF_C)
     for p in np.linspace(0.0, factor * p_limit, n_steps + 1)[1:]:
@@ -221,8 +222,8 @@ def run_trip_bar(fractions_path: np.ndarray, sigma: float = 50e6, E: float = 2.0
     mesh = tube_mesh(0.0, R, L, 2)
     material = uniform_material(E, nu, gamma=gamma, trip_K_1_Pa=K, yield_Pa=1e9 if plasticity else None)
     model = load_mechanics(material, {"plasticity": plasticity, "trip": True})
-    solver = MechanicsSolver(mesh, model, fixed_point=(0.0, 0.0), dirichlet={"z": _nodes_at_mesh(mesh, 1, 0.0)})
-    load = surface_load(mesh, _facets_at(mesh, 1, L), traction_Pa=(0.0, sigma))
+    solver = MechanicsSolver(mesh, model, fixed_point=(0.0, 0.0), dirichlet={"z": nodes_on_line(mesh, 1, 0.0)})
+    load = surface_load(mesh, facets_on_line(mesh, 1, L), traction_Pa=(0.0, sigma))
     corner = np.flatnonzero(np.isclose(mesh.p[0], R) & np.isclose(mesh.p[1], L))[0]
     eps_zz, eps_rr = [], []
     T, X0 = uniform_fields(solver, T_REF_C, 0.0)
