@@ -67,3 +67,28 @@ def test_sample_reproduces_the_lame_stresses_inside_the_wall():
     np.testing.assert_allclose(got["tt"], exact["tt"], rtol=0.01)
     np.testing.assert_allclose(got["rr"], exact["rr"], atol=0.01 * p)
     np.testing.assert_allclose(got["u_r"], exact["u_r"], rtol=1e-3)
+
+
+def test_before_hot_after_bookkeeping_returns_the_annealed_dimensions():
+    """'before' (annealed, RT) -> hot mesh scaled by austenitized_scale -> uniform cooling to 20 C with
+    full transformation to ferrite + carbide (the annealed structure): after - before = 0; full
+    martensite instead gives the martensite-vs-annealed free strain on every dimension."""
+    from skfem import MeshTri
+
+    from quenchsim.mechanics import austenitized_scale, free_strain
+    model = load_mechanics(load_material("SUJ3"), {})
+    before_mesh = v.tube_mesh(0.1092, 0.1505, 0.173, 3)
+    hot = MeshTri(before_mesh.p * austenitized_scale(model), before_mesh.t)
+    before = ring_dimensions(before_mesh)
+    for phase in ("pearlite", "martensite"):
+        solver = MechanicsSolver(hot, model)
+        T0, X0 = v.uniform_fields(solver, model.austenitizing_T_C, 0.0)
+        T1, _ = v.uniform_fields(solver, 20.0, 0.0)
+        X1 = {"austenite": np.zeros_like(T1), phase: np.ones_like(T1)}
+        assert solver.step(T1, X1, T0, X0).converged
+        change = dimension_change(before, ring_dimensions(hot, solver.displacement_m))["change"]
+        growth = (1 + float(free_strain(model, 20.0, {phase: 1.0}))) / (1 + model.annealed_free_strain) - 1
+        for key in ("id", "od", "width"):
+            assert change[key] == pytest.approx(growth * before[key], abs=1e-9)
+        if phase == "pearlite":
+            assert abs(change["od"]) < 1e-9

@@ -4,9 +4,10 @@ structural) strain of a phase mixture.
 Two forms of the free strain are accepted (``[free_strain] form``):
 
 * ``"specific_volume"`` -- the volume of every phase follows from its thermal expansion and its
-  volume change against austenite at a reference temperature, a linear function of the carbon it
-  inherits from the austenite (Thelning / ASM Handbook Vol. 4 relations
-  ``dV/V (%) = a_i + b_i C``), diluted by the undissolved carbide that all states share.  The linear
+  volume change against austenite at a reference temperature, a linear function of the carbon
+  dissolved in the austenite at T_aust (Thelning / ASM Handbook Vol. 4 relations
+  ``dV/V (%) = a_i + b_i C``; the carbon may be taken from the material's dissolved-carbon table, the
+  value the metallurgy uses), diluted by the undissolved carbide that all states share.  The linear
   free strain of phase i relative to austenite at the austenitising temperature T_aust is
 
       eps_i(T) = (1 + dV_i/V)^(1/3) (1 + e_i(T)) / (1 + e_A(T_aust)) - 1,
