@@ -29,8 +29,8 @@ REFERENCE_SET = 2  # clearances 0.020 / 0.200 / 0.200 mm
 # Paper (reference section 6), engine run with the reference clearance set, and engine / static ratios.
 PAPER = {"cage_mean_abs": 4.1, "cage_max": 17.0, "cage_min": -22.0, "pocket_max": 288.0, "pocket_mean": 3.43,
          "spin": 15.0}
-PAPER_RATIO = {"cage slip mean |.|": 2.9, "roller orbital slip mean |.|": 3.5, "roller spin slip mean |.|": 17.3,
-               "pocket force max": 15.0, "pocket force mean |.|": 140.0}
+PAPER_RATIO = {"cage slip mean abs": 2.9, "roller orbital slip mean abs": 3.5, "roller spin slip mean abs": 17.3,
+               "pocket force max": 15.0, "pocket force mean abs": 140.0}
 # Integrator measurement windows: (label, case file, set, mode, settle revolutions, window revolutions)
 BENCHMARKS = (("engine set 2, 7000 rpm", ENGINE_CASE, REFERENCE_SET, "engine", 0.2, 0.1),
               ("rig No.2, 3 kN, 1000 rpm", RIG_CASE, 2, "rig", 0.02, 0.005))
@@ -38,10 +38,10 @@ BENCH_BUDGET = 150_000
 
 
 def _ratio_stats(s: dict) -> dict[str, float]:
-    return {"cage slip mean |.|": s["cage_slip_pct"]["mean_abs"],
-            "roller orbital slip mean |.|": s["roller_orbital_slip_mean_abs_pct"],
-            "roller spin slip mean |.|": s["roller_spin_slip_mean_abs_pct"],
-            "pocket force max": s["pocket_force_N"]["max"], "pocket force mean |.|": s["pocket_force_N"]["mean_abs"]}
+    return {"cage slip mean abs": s["cage_slip_pct"]["mean_abs"],
+            "roller orbital slip mean abs": s["roller_orbital_slip_mean_abs_pct"],
+            "roller spin slip mean abs": s["roller_spin_slip_mean_abs_pct"],
+            "pocket force max": s["pocket_force_N"]["max"], "pocket force mean abs": s["pocket_force_N"]["mean_abs"]}
 
 
 def _rig_orbit(result: RunResult) -> tuple[np.ndarray, np.ndarray, dict]:
@@ -63,9 +63,9 @@ def _rig_orbit(result: RunResult) -> tuple[np.ndarray, np.ndarray, dict]:
 
 
 def _plot_clearance_study(stats: list[dict], names: list[str], path: pathlib.Path) -> pathlib.Path:
-    keys = [("cage_slip_pct", "mean_abs", "cage slip mean |.| [%]"),
-            ("roller_orbital_slip_mean_abs_pct", None, "roller orbital slip mean |.| [%]"),
-            ("roller_spin_slip_mean_abs_pct", None, "roller spin slip mean |.| [%]"),
+    keys = [("cage_slip_pct", "mean_abs", "cage slip mean abs [%]"),
+            ("roller_orbital_slip_mean_abs_pct", None, "roller orbital slip mean abs [%]"),
+            ("roller_spin_slip_mean_abs_pct", None, "roller spin slip mean abs [%]"),
             ("pocket_force_N", "max", "pocket force max [N]")]
     fig, ax = plt.subplots(1, 4, figsize=(14, 3.4))
     for a, (k, sub, label) in zip(ax, keys):
