@@ -18,7 +18,7 @@ import numpy as np
 
 from quenchsim.bearings.gas_journal.forces import attitude_deg, film_force
 from quenchsim.bearings.gas_journal.geometry import Bearing, grid_for_level
-from quenchsim.bearings.gas_journal.reynolds import check_inputs
+from quenchsim.bearings.gas_journal.reynolds import check_inputs, operator_hierarchy, solve
 from quenchsim.bearings.gas_journal.transient import CrankNicolsonFilm, FilmState, film_frame
 from quenchsim.errors import InputError, SolverError, require
 
@@ -97,9 +97,13 @@ def whirl_analysis(time: np.ndarray, x: np.ndarray, y: np.ndarray, centre: tuple
 def orbit(bearing: Bearing, bearing_number: float, load: float, mass: float, level: int = 3,
           duration: float = 60.0, start: tuple[float, float] = (0.0, 0.0), load_angle_deg: float = -90.0,
           method: str = "multigrid", rtol: float = 1e-4, atol: float = 1e-6, max_step: float = 0.5,
-          settle_tolerance: float = 1e-5, stop_when_settled: bool = True) -> OrbitResult:
+          settle_tolerance: float = 1e-5, stop_when_settled: bool = True,
+          initial_film: str = "ambient") -> OrbitResult:
     """Integrate the rotor orbit under the constant load ``load`` (= W/(pa L D), towards
-    ``load_angle_deg``) with dimensionless mass M = ``mass`` from rest at ``start`` with P = 1.
+    ``load_angle_deg``) with dimensionless mass M = ``mass`` from rest at ``start`` with P = 1
+    (``initial_film="ambient"``, the reference's start) or with the steady film of the held rotor
+    (``"steady"``: released from a held position, avoids a touch-down while a stiff gas film is
+    still building up at high Lambda).
 
     Stops at ``duration``, at touch-down (eccentricity >= CONTACT_ECCENTRICITY) or, with
     ``stop_when_settled``, when the rotor has settled: either the speed and the net force stay below
@@ -116,7 +120,13 @@ def orbit(bearing: Bearing, bearing_number: float, load: float, mass: float, lev
         max_step = min(max_step, math.pi / bearing.grooves.count / STEPS_PER_GROOVE_PASSAGE)
     film = CrankNicolsonFilm(bearing, grid, bearing_number, method)
     f_ext = load * np.array([math.cos(math.radians(load_angle_deg)), math.sin(math.radians(load_angle_deg))])
-    state = FilmState(0.0, (float(start[0]), float(start[1])), np.ones(grid.shape))
+    require(initial_film in ("ambient", "steady"), "initial_film", initial_film, "must be 'ambient' or 'steady'")
+    start = (float(start[0]), float(start[1]))
+    p0 = np.ones(grid.shape)
+    if initial_film == "steady":
+        ops = operator_hierarchy(bearing, grid, bearing_number, start, film_frame(bearing, 0.0))
+        p0 = solve(ops, method).p
+    state = FilmState(0.0, start, p0)
 
     def rhs(y: np.ndarray, fs: FilmState) -> tuple[np.ndarray, np.ndarray]:
         force = film_force(grid, fs.p, film_frame(bearing, fs.time))

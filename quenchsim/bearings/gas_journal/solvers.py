@@ -18,6 +18,7 @@ from quenchsim.bearings.gas_journal import kernels
 from quenchsim.bearings.gas_journal.operator import Operator
 
 TOLERANCE = 1e-5  # ||R||_2 stopping rule on the finest grid (reference section 1)
+DIVERGED = 1e3  # a relaxation run whose residual grows by this factor is stopped as diverged
 
 
 @dataclass
@@ -53,7 +54,7 @@ def relaxation_solve(op: Operator, p0: np.ndarray, f: np.ndarray, omega: float =
         op.update_weights(p)
         res = op.residual_norm(p, f)
         history.append(res)
-        if not np.isfinite(res):
+        if not np.isfinite(res) or res > DIVERGED * history[0]:
             break
     return SolveResult(p, sweeps, res, float(sweeps), time.perf_counter() - start, res <= tol, history)
 
