@@ -364,17 +364,22 @@ def write(reports_dir: Path) -> list[Path]:
            "(mineral oils 0.12-0.14; Incropera & DeWitt Table A.5 engine oil 0.138 at 350 K). Bath at 60 C.",
            "- Boiling data of the oil's light end from n-eicosane (boiling point 343 C, NIST WebBook); vapour "
            "properties estimated; Rohsenow C_sf calibrated to the still-oil peak at 550 C (Buczek & Telejko 2013).",
-           "- Leidenfrost temperature T_L = 580 C + 450 K U/(U + 4 m/s) with the local oil speed U, transition boiling "
-           "at least 60 K wide below it: 580 C puts the still-oil peak at 520 C as in the HTC curve of Buczek & "
-           "Telejko (2013); the agitation rise and its speed scale are estimates set "
-           "once, for all rings and conditions, with a 1-D conduction check of the case-A wall against the report's "
-           "relative centre cooling (conditions 2 and 3 vs 1) -- they are the model's calibrated constants.",
+           "- Leidenfrost temperature T_L = 550 C + 450 K U/(U + 3 m/s) with the local oil speed U, transition boiling "
+           "at least 40 K wide below it (still oil: peak at 510 C, HTC curve of Buczek & Telejko 2013 peaks at "
+           "520-550 C). The still value is from that curve; the agitation rise, its speed scale, the 40 K width and "
+           "the bore up-flow below are estimates, set once for all rings and conditions with 1-D conduction checks "
+           "and then three full-chain runs of case A against the report's relative centre cooling (conditions 2 "
+           "and 3 vs 1) -- they are the model's calibrated constants, not per-condition settings.",
+           "- ID jets cross oil rising in the bore at 0.2 m/s (the ring heats the oil column in its bore): "
+           "Pratte & Baines jet-in-cross-flow drift lengthens their path -- strongly at 0.4 m/s exit speed, "
+           "weakly at 1-2 m/s, as the report saw (weak ID jets bend before the bore, doubled ones hit it).",
            "- Nozzles: OD rows of 12 x 10 mm nozzles, 100 mm from the OD, at 3/4 and 1/4 of the width, the lower "
            "row aimed 15 deg down; one ID row of 8 x 8 mm nozzles at mid-width, 60 mm from the bore; half of the "
            "bottom face covered by the turntable; surrounding oil not swirling; 30 % of a wall jet carried round "
            "a convex edge.",
-           "- Not modelled: jet bending by the tank through-flow (the report saw weak ID jets bend before the "
-           "bore), local heating of the oil near the part, time dependence of the flow.", ""]
+           "- Not modelled: the shift of a bent jet's impact point, the tank through-flow (the lower OD row's "
+           "downward bend is a fixed 15 deg inclination), local heating of the oil near the part, time dependence "
+           "of the flow.", ""]
 
     # HTC(T) and velocities for conditions 1-6
     md += ["## HTC(T) per segment and local velocities, conditions 1-6", ""]
