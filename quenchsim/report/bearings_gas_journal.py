@@ -7,7 +7,6 @@ benchmark (levels 3-6, Lambda 1/10/100, four methods) and the stability threshol
 
 from __future__ import annotations
 
-import math
 import pathlib
 import time
 

@@ -28,6 +28,7 @@ def test_static_grooved_direct_matches_multigrid(capsys):
     _, mg = _run(capsys, *args)
     _, direct = _run(capsys, *args, "--method", "direct")
     assert json.loads(mg.out)["load"] == pytest.approx(json.loads(direct.out)["load"], rel=1e-4)
+    assert json.loads(mg.out)["groove_width_length_ratio_on_grid"] == [0.5, 0.5]
 
 
 def test_bench_json(capsys):

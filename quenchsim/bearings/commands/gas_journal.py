@@ -9,7 +9,7 @@ import argparse
 import pathlib
 
 from quenchsim.bearings.gas_journal.benchmark import run_benchmark, sor_factor, warm_up
-from quenchsim.bearings.gas_journal.geometry import Bearing, Grooves
+from quenchsim.bearings.gas_journal.geometry import Bearing, Grooves, effective_ratios
 from quenchsim.bearings.gas_journal.orbit import mass_from_parameter, orbit
 from quenchsim.bearings.gas_journal.reynolds import METHODS
 from quenchsim.bearings.gas_journal.stability import critical_mass_parameter
@@ -73,9 +73,14 @@ def _static(args: argparse.Namespace) -> dict:
     jit = warm_up()
     res = static_characteristics(_bearing(args), lam, args.eccentricity, args.displacement_angle, level,
                                  args.method, sor_omega=omega)
-    return {"load": res.load, "attitude_deg": res.attitude_deg, "grid": [res.grid.n_xi + 1, res.grid.n_eta + 1],
-            "iterations": res.iterations, "residual": res.residual, "wall_time_s": res.wall_time_s,
-            "jit_warm_up_s": jit}
+    out = {"load": res.load, "attitude_deg": res.attitude_deg, "grid": [res.grid.n_xi + 1, res.grid.n_eta + 1],
+           "iterations": res.iterations, "residual": res.residual, "wall_time_s": res.wall_time_s,
+           "jit_warm_up_s": jit}
+    bearing = _bearing(args)
+    if bearing.grooves is not None:
+        # groove edges snap to grid lines: the ratios actually represented on this grid
+        out["groove_width_length_ratio_on_grid"] = list(effective_ratios(res.grid, bearing.grooves))
+    return out
 
 
 def _orbit(args: argparse.Namespace) -> dict:

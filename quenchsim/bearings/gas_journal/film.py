@@ -91,10 +91,6 @@ class FilmGeometry:
         vol[1:] += h[..., 3]
         return vol
 
-    def min_film(self, displacement: tuple[float, float], frame: FilmFrame) -> float:
-        """Smallest film thickness ratio on the half-face points."""
-        return float(self.face_films(displacement, frame).min())
-
 
 @lru_cache(maxsize=32)
 def film_hierarchy(grid: Grid, grooves: Grooves | None) -> tuple[FilmGeometry, ...]:
