@@ -47,7 +47,7 @@ def test_orbit_settles_at_the_static_equilibrium_of_the_same_grid():
                           (3.0, 0.6, 0.720, 30.50), (12.0, 0.2, 0.273, 17.95), (12.0, 0.6, 1.280, 11.58)])
 def test_orbit_recovers_raimondi(lam, eps, load, attitude):
     res = orbit(Bearing(), lam, load, mass_from_parameter(0.1, lam), level=4, duration=200.0,
-                start=(0.0, -0.8 * eps))
+                start=(0.0, -0.8 * eps), initial_film="steady", settle_tolerance=2e-6)
     assert res.eccentricity == pytest.approx(eps, abs=0.005)
     assert abs(res.attitude_deg - attitude) < 0.5
 
