@@ -24,8 +24,11 @@ BENCH_WALL_MM = (108.0, 150.5, 173.0)
 """Benchmark section: inner radius, outer radius, width (mm) of the case-A ring (hot geometry)."""
 
 
-def _suj3(options: dict) -> object:
-    return load_mechanics(load_material("SUJ3"), options)
+def _suj3(options: dict, austenite_yield_factor: float = 1.0) -> object:
+    material = load_material("SUJ3")
+    table = material["mechanics"]["plastic"]["yield_Pa"]["per_phase"]["austenite"]
+    table["value"] = [austenite_yield_factor * x for x in table["value"]]
+    return load_mechanics(material, options)
 
 
 def _convergence_table(name: str, runs: dict[int, dict[str, float]]) -> list[str]:
@@ -54,14 +57,15 @@ def _field_plot(path: Path, comparison: v.FieldComparison, title: str, scale: fl
     plt.close(fig)
 
 
-def _synthetic_quench(n_across: int, n_steps: int, options: dict | None = None) -> dict[str, float]:
+def _synthetic_quench(n_across: int, n_steps: int, options: dict | None = None,
+                      austenite_yield_factor: float = 1.0) -> dict[str, float]:
     """Synthetic surface-first quench of the case-A hot section: T = 20 + 830 exp(-t/tau),
     tau = 20 + 200 d^2 s with d the distance to the nearest surface over half the wall, Koistinen-Marburger
     martensite (Ms 220 C, 0.011 /K); geometric steps from 0.05 to 900 s.  Returns CPU time, Newton
     iterations, factorisations and the dimension changes (mm) from the hot geometry."""
     r_in, r_out, width = (x * 1e-3 for x in BENCH_WALL_MM)
     mesh = v.tube_mesh(r_in, r_out, width, n_across)
-    solver = MechanicsSolver(mesh, _suj3(options or {}))
+    solver = MechanicsSolver(mesh, _suj3(options or {}, austenite_yield_factor))
     r = solver.asm.radius
     z = np.asarray(solver.basis.global_coordinates())[1]
     depth = np.minimum(np.minimum(r - r_in, r_out - r), np.minimum(z, width - z)) / (0.5 * (r_out - r_in))
@@ -209,6 +213,16 @@ def write(reports_dir: Path) -> list[Path]:
            "elements across the wall, so the mesh dependence above comes from resolving the plastic surface",
            "layer.  The time integration (backward Euler radial return, end-of-step yield stress and TRIP) is",
            "first order: the change per doubling of the step count halves.", ""]
+    md += ["### Sensitivity to the uncertain data (10 elements across, 250 steps)", "",
+           "| variant | dID mm | dOD mm | dwidth mm |", "|---|---|---|---|"]
+    for label, opts, factor in (("reference (plasticity + TRIP)", {}, 1.0), ("austenite yield x 0.5", {}, 0.5),
+                                ("austenite yield x 2", {}, 2.0), ("no TRIP", {"trip": False}, 1.0),
+                                ("thermo-elastic", {"plasticity": False, "trip": False}, 1.0)):
+        res = _synthetic_quench(10, 250, opts, factor)
+        md.append(f"| {label} | {res['d_id']:.3f} | {res['d_od']:.3f} | {res['d_width']:.3f} |")
+    md += ["", "The austenite flow stress (judged +-40 %) and TRIP move the dimension change by tenths of a",
+           "millimetre, more than the 0.15 mm regression tolerance: the data, not the discretisation, limit",
+           "the prediction.", ""]
     page = out / PAGE
     page.write_text("\n".join(md))
     return [page, *files]
