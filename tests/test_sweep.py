@@ -16,7 +16,8 @@ import pytest
 import tomli_w
 
 from quenchsim.errors import InputError
-from quenchsim.sweep import RESULTS_CSV, case_names, load_sweep, make_sweep, read_results, run_sweep
+from quenchsim.sweep import (RESULTS_CSV, case_hash, case_names, finished, load_sweep, make_sweep, read_results,
+                             run_sweep)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -137,6 +138,12 @@ def _sweep_file(tmp_path: Path, n: int) -> Path:
     return path
 
 
+def _hash(sweep: Path, case: str) -> str:
+    spec = load_sweep(sweep)
+    point = dict(zip(case_names(spec.parameters, spec.points), spec.points))[case]
+    return case_hash(spec.raw_case, spec.condition, spec.overrides(point))
+
+
 def _ok_rows(csv_path: Path) -> list[dict]:
     try:
         return [r for r in read_results(csv_path) if r["status"] == "ok"]
@@ -144,19 +151,26 @@ def _ok_rows(csv_path: Path) -> list[dict]:
         return []
 
 
-def test_killed_sweep_rerun_finishes_only_the_missing_cases(tmp_path):
+@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGINT], ids=["kill -9", "ctrl-c"])
+def test_killed_sweep_rerun_finishes_only_the_missing_cases(tmp_path, sig):
     sweep, out = _sweep_file(tmp_path, 4), tmp_path / "out"
     cmd = [sys.executable, "-m", "quenchsim.cli", "sweep", str(sweep), "--workers", "2", "--out", str(out), "--quiet"]
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
     try:
         deadline = time.monotonic() + 240
         while not _ok_rows(out / RESULTS_CSV) and proc.poll() is None and time.monotonic() < deadline:
             time.sleep(0.05)
-        os.killpg(proc.pid, signal.SIGKILL)       # the sweep and its LocalCluster workers, no clean-up
+        # the whole process group, like a terminal's Ctrl-C; SIGKILL: the sweep and its workers, no clean-up
+        os.killpg(proc.pid, sig)
     finally:
-        proc.communicate(timeout=60)
-    done = {r["case"] for r in _ok_rows(out / RESULTS_CSV)}
-    assert 1 <= len(done) < 4, "the sweep was to be killed midway"
+        stdout, _ = proc.communicate(timeout=120)
+    if sig == signal.SIGINT:
+        assert proc.returncode == 130 and '"interrupted": true' in stdout
+    # finished = a case folder whose summary.json says ok; a worker may finish a case after the last
+    # results.csv update and before the kill lands: that case is finished too (and must not run again)
+    listed = {r["case"] for r in _ok_rows(out / RESULTS_CSV)}
+    done = {p.parent.name for p in out.glob("*/summary.json") if finished(p.parent, _hash(sweep, p.parent.name))}
+    assert listed <= done and 1 <= len(done) < 4, "the sweep was to be killed midway"
     mtimes = {c: (out / c / "summary.json").stat().st_mtime_ns for c in done}
 
     rerun = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
