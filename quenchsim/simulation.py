@@ -30,6 +30,7 @@ from quenchsim.errors import InputError, QuenchsimError, SolverError
 from quenchsim.geometry import BoundaryPoints, SectionExtent, SectionMesh, mesh_profile, profile_from_case
 from quenchsim.geometry.profile import MM, Profile
 from quenchsim.io import ProbeWriter, VtkSeries
+from quenchsim.io.revolve import revolve_vtu
 from quenchsim.materials import load_material, thermal_properties
 from quenchsim.results import NodalProjection, depth_below, phase_statistics, time_to_temperature
 from quenchsim.thermal import AxisymmetricP2, ThermalSolver, parse_htc_table
@@ -268,7 +269,8 @@ class QuenchRun:
             log.error("run stopped at t = %.4g s: %s", self.thermal.time_s, exc)
         finally:
             probes.close()
-        vtk.write(self.thermal.time_s, self.nodal_fields())
+        last = vtk.write(self.thermal.time_s, self.nodal_fields())
+        revolve_vtu(last, out / "final_3d.vtu")     # 270-degree sector of the final state for ParaView
         time_arr = np.asarray(times)
         probe_T = {n: np.array([row[i] for row in probe_rows]) for i, n in enumerate(self.probe_names)}
         try:

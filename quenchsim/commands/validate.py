@@ -24,9 +24,10 @@ import traceback
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-REPORT_MODULES = ("validation", "bench", "cct", "bath", "bearings_basics", "bearings_runout", "bearings_gas_journal",
-                  "bearings_big_end", "sweep_bench")
-"""Modules of quenchsim.report with a ``write(reports_dir)``, in the order of the index."""
+REPORT_MODULES = ("validation", "bench", "cct", "bath", "quenchsim.mechanics.report", "bearings_basics",
+                  "bearings_runout", "bearings_gas_journal", "bearings_big_end", "sweep_bench")
+"""Modules with a ``write(reports_dir)``, in the order of the index: names in quenchsim.report, or full
+dotted module paths."""
 PACKAGE = "quenchsim.report"
 INDEX_JSON = "index.json"
 
@@ -47,8 +48,9 @@ def _snapshot(directory: Path) -> dict[str, int]:
 
 
 def run_module(name: str, reports_dir: Path, package: str = PACKAGE) -> ModuleResult:
-    """Import ``package.name`` and call its ``write(reports_dir)``; never raises."""
-    full = f"{package}.{name}"
+    """Import ``package.name`` (or ``name`` when it is a dotted path) and call its ``write(reports_dir)``;
+    never raises."""
+    full = name if "." in name else f"{package}.{name}"
     try:
         module = importlib.import_module(full)
     except ModuleNotFoundError as exc:
