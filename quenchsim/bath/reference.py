@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import copy
 import tomllib
 from pathlib import Path
 from typing import Any
 
+from quenchsim.case import deep_merge
 from quenchsim.errors import InputError
 
 REFERENCE_FILE = Path(__file__).with_name("reference_nozzles.toml")
@@ -15,17 +15,6 @@ RING_SECTIONS_MM = {  # ID (raceway diameter at mid-width for B), OD, width: que
     "case_A": (218.3, 301.0, 173.0),
     "case_B": (427.0, 460.6, 118.5),
 }
-
-
-def merge(base: dict[str, Any], override: dict[str, Any]) -> dict[str, Any]:
-    """Recursive table merge: override's scalars replace, its tables merge into base's."""
-    out = copy.deepcopy(base)
-    for key, value in override.items():
-        if isinstance(value, dict) and isinstance(out.get(key), dict):
-            out[key] = merge(out[key], value)
-        else:
-            out[key] = copy.deepcopy(value)
-    return out
 
 
 def reference_bath_spec(case: str, condition: str | int) -> dict[str, Any]:
@@ -39,7 +28,7 @@ def reference_bath_spec(case: str, condition: str | int) -> dict[str, Any]:
         raise InputError("condition", condition, f"{case} has conditions {', '.join(CONDITIONS[case])}")
     spec = data[case]["quench"]["bath"]
     override = data[case].get("conditions", {}).get(cond, {}).get("quench", {}).get("bath", {})
-    return merge(spec, override)
+    return deep_merge(spec, override)
 
 
 def case_of_condition(condition: str | int) -> str:
