@@ -34,7 +34,9 @@ def write(reports_dir: Path, runs_dir: Path = RUNS) -> list[Path]:
           f"measured on {platform.machine()} with {os.cpu_count()} cores, Python {platform.python_version()}, "
           "by `quenchsim validate` (quenchsim/report/bench.py). `total_s` includes meshing, setup and "
           "post-processing; the stage columns are the time spent in each stage of the time loop "
-          "(thermal_metallurgy_s is the thermal solve with the kinetics inside its iteration).", "",
+          "(thermal_metallurgy_s is the thermal solve with the kinetics inside its iteration). The runs are the "
+          "validation runs: when several ran at once on the two cores, their wall times include that sharing -- "
+          "compare them with `quenchsim run` on an idle machine before quoting absolute times.", "",
           "| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     for r in rows:
         md.append("| " + " | ".join(f"{r[c]:.3g}" if isinstance(r[c], float) else str(r[c]) for c in cols) + " |")

@@ -203,9 +203,32 @@ def write(reports_dir: Path, runs_dir: Path = RUNS) -> list[Path]:
                                    "P1_t500_s": v["probes"]["P1"]["t_to_500C_s"],
                                    "change_mm": v.get("dimensions_mm", {}).get("change")} for k, v in conv.items()}
     md.append("")
+    md += _verification_section(out_json)
     (reports_dir / "validation.md").write_text("\n".join(md) + "\n")
     (reports_dir / "validation.json").write_text(json.dumps(out_json, indent=2, default=float))
     return [reports_dir / "validation.md", reports_dir / "validation.json", *written]
+
+
+def _verification_section(out_json: dict[str, Any]) -> list[str]:
+    """The thermal solver against closed forms (the same studies the tests assert on)."""
+    from quenchsim.thermal import verification as v
+
+    solid = {dt: v.solid_cylinder_error(24, dt) for dt in (2.0, 1.0, 0.5)}
+    hollow = v.hollow_cylinder_error()
+    log_err = {n: v.log_profile_error(n) for n in (2, 4, 8)}
+    out_json["verification_thermal"] = {"solid_cylinder_error_vs_dt": solid, "hollow_cylinder_error": hollow,
+                                        "log_profile_error_K_vs_elements": log_err}
+    return ["## Verification of the thermal solver (closed forms)", "",
+            "Errors as fractions of the initial temperature drop (transient) or in K (steady); the tests in "
+            "tests/test_thermal_verification.py assert the same quantities, tests/test_energy_balance.py the energy "
+            "balance with latent heat (< 1 %), the metallurgy and mechanics tests their closed forms "
+            "(see reports/cct.md and reports/mechanics_verification.md).", "",
+            "| problem | result |", "|---|---|",
+            "| long solid cylinder, Robin, series solution (Carslaw & Jaeger 7.7), 24 P2 elements, dt = 2 / 1 / 0.5 s | "
+            + " / ".join(f"{e:.2e}" for e in solid.values()) + " (first order in dt) |",
+            f"| long hollow cylinder, Robin on bore and OD, eigenfunction series | {hollow:.2e} |",
+            "| steady hollow cylinder, log profile, 2 / 4 / 8 elements across (K) | "
+            + " / ".join(f"{e:.2e}" for e in log_err.values()) + " |", ""]
 
 
 def _mechanics_plots(run: Any, tag: str, title: str, reports_dir: Path, written: list[Path]) -> list[str]:
@@ -213,7 +236,7 @@ def _mechanics_plots(run: Any, tag: str, title: str, reports_dir: Path, written:
     if run.outline is not None:
         o = run.outline
         written.append(_png(reports_dir / f"validation_{tag}_distortion.png", report_plots.distortion(
-            o["r_before_mm"], o["z_before_mm"], o["r_after_mm"], o["z_after_mm"], title)))
+            o["r_before_mm"], o["z_before_mm"], o["r_after_mm"], o["z_after_mm"], title, "outline.csv")))
         md += [f"![distortion x10 {title}](validation_{tag}_distortion.png)"]
     if run.hoop_traverse is not None:
         h = run.hoop_traverse
