@@ -338,7 +338,7 @@ class QuenchRun:
                                         "axial": {k: float(axial[i]) for k, i in at.items()}}}
 
     # -- summary --------------------------------------------------------------------------------
-    def hardness_traverse(self, side: str, n: int = 400) -> tuple[np.ndarray, np.ndarray]:
+    def hardness_traverse(self, side: str, hrc_nodal: np.ndarray, n: int = 400) -> tuple[np.ndarray, np.ndarray]:
         """HRC along mid-width from the bore ("bore") or OD ("od") surface into the wall: (depth_mm, HRC)."""
         r0, r1, z0, z1 = self.profile.bounds()
         z_mid = 0.5 * (z0 + z1)
@@ -347,9 +347,8 @@ class QuenchRun:
         wall = r_od - r_bore
         depth = np.linspace(1e-6, wall - 1e-6, n)   # 1 um inside: the traverse ends on the surfaces
         r = r_bore + depth if side == "bore" else r_od - depth
-        nodal = self.nodal_fields()["hardness_HRC"]
         probe = self.projection.p1.probes(np.vstack([r, np.full_like(r, z_mid)]))
-        return depth / MM, probe @ nodal
+        return depth / MM, probe @ hrc_nodal
 
     def summary(self, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wall0: float, steps: int,
                 rejected: int, energy_out: float, latent: float) -> dict[str, Any]:
@@ -364,7 +363,7 @@ class QuenchRun:
                              "t8_5_s": _t_between(time_s, T, 800.0, 500.0)} for n, T in probe_T.items()}
         depth, traverse = {}, {}
         for side in ("bore", "od"):
-            d, h = self.hardness_traverse(side)
+            d, h = self.hardness_traverse(side, hrc)
             traverse[side] = (d, h)
             depth[f"HRC58_{side}_mid"] = depth_below(d, h, HRC_THRESHOLD)
         np.savetxt(self.out / "hardness_traverse.csv",
