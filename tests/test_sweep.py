@@ -231,3 +231,30 @@ def test_example_case_script_runs_and_a_thicker_wall_ends_softer(tmp_path):
     assert [r["status"] for r in rows] == ["ok", "ok"]
     thin, thick = rows
     assert thick["hardness.core_HRC"] < thin["hardness.core_HRC"]
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="glibc malloc")
+def test_keep_freed_memory_stops_page_faults_of_reallocated_arrays():
+    """What a Dask nanny's MALLOC_TRIM_THRESHOLD_ does (fixed 128 KiB mmap threshold): every 4 MB array is
+    mapped afresh (~1000 page faults); after keep_freed_memory() the freed block is reused (none)."""
+    import ctypes
+    import ctypes.util
+    import resource
+
+    import numpy as np
+
+    from quenchsim.sweep import keep_freed_memory
+
+    def faults_per_array() -> float:
+        before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+        for _ in range(20):
+            a = np.ones(500_000)
+            del a
+        return (resource.getrusage(resource.RUSAGE_SELF).ru_minflt - before) / 20
+
+    mallopt = ctypes.CDLL(ctypes.util.find_library("c")).mallopt
+    assert mallopt(-3, 128 * 1024) and mallopt(-1, 65536)  # M_MMAP_THRESHOLD, M_TRIM_THRESHOLD as under Dask
+    assert faults_per_array() > 500
+    assert keep_freed_memory()
+    faults_per_array()  # the first array grows the heap once
+    assert faults_per_array() < 10

@@ -67,7 +67,9 @@ def _with_separate_workers(out: pathlib.Path, scratch: pathlib.Path) -> dict[str
     try:
         for i in range(WORKERS):
             procs.append(subprocess.Popen([*dask, "worker", address, "--nworkers", "1", "--nthreads", "1",
-                                           "--no-dashboard", "--local-directory", str(scratch / f"w{i}")], **quiet))
+                                           "--no-dashboard", "--local-directory", str(scratch / f"w{i}")],
+                                          env={**os.environ, "DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED": "False"},
+                                          **quiet))
         with Client(address, timeout="120s") as client:
             client.wait_for_workers(WORKERS, timeout=300)
         return _sweep(out, "--scheduler", address)
