@@ -2,6 +2,7 @@
 
 import math
 
+import numpy as np
 import pytest
 
 from quenchsim.bearings import grease, kinematics as kin
@@ -9,50 +10,87 @@ from quenchsim.errors import InputError
 
 DATA = grease.grease_data()["fitted_data"]["urea"]
 DM_6204 = kin.bearing("6204").pitch_diameter_m * 1e3
-
-
-def _repeat_scatter_log10():
-    """The paper's own scatter: its L50 values for the same nominal condition (6204, 10000 rpm inner,
-    150 C, lightest load) from the speed, load and temperature series and the inner-ring reference of
-    the same-cage-speed test span this factor (in log10)."""
-    base = [DATA["speed_series"]["L50_h"][0], DATA["load_series"]["L50_h"][0],
-            DATA["temperature_series"]["L50_h"][1], DATA["same_cage_speed"]["inner_L50_h"]]
-    return math.log10(max(base) / min(base))
+POINTS = grease.published_points("urea")
 
 
 def _life(**kw):
-    args = dict(grease="urea", base_oil=DATA["base_oil"], dm_mm=DM_6204, speed_rpm=10000.0,
+    args = dict(grease="urea", base_oil="pao+ester", dm_mm=DM_6204, speed_rpm=10000.0,
                 temperature_C=150.0, load_ratio=0.016)
     args.update(kw)
     return grease.grease_life(**args)
 
 
-def test_speed_and_load_series_within_paper_scatter():
-    tol = _repeat_scatter_log10()
-    assert 0.1 < tol < 0.2  # 1559 ... 2117 h for one nominal condition
-    s = DATA["speed_series"]
-    for n, L in zip(s["speed_rpm"], s["L50_h"]):
-        r = _life(speed_rpm=n, temperature_C=s["temperature_C"], load_ratio=s["load_ratio"])
-        assert abs(math.log10(r.L50_h / L)) <= tol, (n, r.L50_h, L)
-    s = DATA["load_series"]
-    for F, L in zip(s["load_ratio"], s["L50_h"]):
-        r = _life(load_ratio=F)
-        assert abs(math.log10(r.L50_h / L)) <= tol, (F, r.L50_h, L)
+def _fit():
+    p = POINTS
+    return grease.fit_base_oil_factor("urea", p.dm_mm, p.speed_rpm, p.temperature_C, p.load_ratio, p.L50_h)
 
 
-def test_temperature_series_shape_and_uniform_offset():
-    # the series' other conditions are not stated; the formula must reproduce its temperature trend
+def test_repeat_scatter_is_the_spread_of_the_nominal_repeats():
+    repeats = DATA["nominal_repeats_L50_h"]
+    # each repeat value is a published value of the nominal condition (10000 rpm, 150 C, lightest load)
+    nominal = (POINTS.speed_rpm == 10000.0) & (POINTS.temperature_C == 150.0) & (POINTS.load_ratio <= 0.016)
+    assert sorted(POINTS.L50_h[nominal]) == sorted(repeats[:3])
+    assert repeats[3] == DATA["same_cage_speed"]["inner_L50_h"]
+    tol = grease.repeat_scatter_log10("urea")
+    assert tol == pytest.approx(math.log10(2117.0 / 1559.0), rel=1e-12)   # factor 1.36
+
+
+def test_every_published_point_within_paper_scatter_with_fitted_base_oil_factor():
+    """The test grease's base oil is not stated: K1 is estimated from all nine points (least squares
+    in log10 L) and then every point must lie within the paper's repeat scatter."""
+    assert POINTS.L50_h.size == 9
+    fit = _fit()
+    tol = grease.repeat_scatter_log10("urea")
+    residual = fit.residuals_log10(fit.k1_least_squares)
+    assert np.all(np.abs(residual) <= tol), (fit.k1_least_squares, residual, tol)
+    # least squares: residuals sum to zero and any other K1 has a larger sum of squares
+    assert residual.sum() == pytest.approx(0.0, abs=1e-12)
+    for dk in (-1e-3, 1e-3):
+        assert np.sum(fit.residuals_log10(fit.k1_least_squares + dk) ** 2) > np.sum(residual**2)
+    # the estimate lies in the K1 range that keeps every point within the scatter
+    lo, hi = fit.feasible_interval(tol)
+    assert lo <= fit.k1_least_squares <= hi and lo <= fit.k1_minimax <= hi
+    # the residuals are those of the public formula: with a named base oil, grease_life gives them
+    for oil in ("pao+ester", "mineral"):
+        k1 = grease.base_oil_factor("urea", oil)
+        lives = [_life(base_oil=oil, speed_rpm=n, temperature_C=T, load_ratio=F).L50_h
+                 for n, T, F in zip(POINTS.speed_rpm, POINTS.temperature_C, POINTS.load_ratio)]
+        np.testing.assert_allclose(np.log10(np.array(lives) / POINTS.L50_h), fit.residuals_log10(k1), atol=1e-12)
+
+
+def test_fitted_factor_predicts_the_same_cage_speed_points():
+    # not used in the fit: inner ring 10000 rpm (1636 h) and outer ring 6150 rpm (1765 h), nominal T and load
+    fit = _fit()
+    tol = grease.repeat_scatter_log10("urea")
+    same = DATA["same_cage_speed"]
+    K = kin.equivalent_inner_speed_factor(kin.bearing("6204").geometry)
+    for rpm, k, L in ((same["inner_rpm"], 1.0, same["inner_L50_h"]), (same["outer_rpm"], K, same["outer_L50_h"])):
+        model = grease.log10_life_without_base_oil("urea", DM_6204, rpm, 150.0, 0.016, k) + fit.k1_least_squares
+        assert abs(model - math.log10(L)) <= tol, (rpm, 10**model, L)
+
+
+def test_fit_recovers_a_known_base_oil_factor():
+    k1 = grease.base_oil_factor("urea", "ether")
+    p = POINTS
+    exact = np.array([_life(base_oil="ether", speed_rpm=n, temperature_C=T, load_ratio=F).L50_h
+                      for n, T, F in zip(p.speed_rpm, p.temperature_C, p.load_ratio)])
+    fit = grease.fit_base_oil_factor("urea", p.dm_mm, p.speed_rpm, p.temperature_C, p.load_ratio, exact)
+    assert fit.k1_least_squares == pytest.approx(k1, abs=1e-12)
+    assert fit.k1_minimax == pytest.approx(k1, abs=1e-12)
+    assert fit.k1_standard_error < 1e-12
+    # a uniform factor 2 on every life shifts K1 by log10 2 and nothing else
+    shifted = grease.fit_base_oil_factor("urea", p.dm_mm, p.speed_rpm, p.temperature_C, p.load_ratio, 2.0 * exact)
+    assert shifted.k1_least_squares == pytest.approx(k1 + math.log10(2.0), abs=1e-12)
+
+
+def test_temperature_series_shape():
+    # the formula's temperature trend L(T)/L(150 C) reproduces the series independently of K1 and speed
     s = DATA["temperature_series"]
-    tol = _repeat_scatter_log10()
+    tol = grease.repeat_scatter_log10("urea")
     ref = s["L50_h"][1]
-    residual = []
     for T, L in zip(s["temperature_C"], s["L50_h"]):
         model_ratio = _life(temperature_C=T).L50_h / _life(temperature_C=150.0).L50_h
         assert abs(math.log10(model_ratio / (L / ref))) <= tol / 2
-        residual.append(math.log10(_life(temperature_C=T).L50_h / L))
-    # the level differs by one common offset (an unstated condition), not by a trend
-    mean = sum(residual) / 3
-    assert max(abs(r - mean) for r in residual) < 0.03
 
 
 def test_outer_ring_rotation_example():
@@ -69,7 +107,7 @@ def test_outer_ring_rotation_example():
     same = DATA["same_cage_speed"]
     r = _life(speed_rpm=same["outer_rpm"], speed_factor=K).L50_h / _life(speed_rpm=same["inner_rpm"]).L50_h
     measured = same["outer_L50_h"] / same["inner_L50_h"]
-    assert abs(math.log10(r / measured)) <= _repeat_scatter_log10()
+    assert abs(math.log10(r / measured)) <= grease.repeat_scatter_log10("urea")
     assert r == pytest.approx(1.0, abs=0.02)
 
 
@@ -120,3 +158,12 @@ def test_bad_input():
         _life(speed_factor=0.5)
     with pytest.raises(InputError, match="slope"):
         grease.weibull_life(1000.0, 0.0)
+    p = POINTS
+    with pytest.raises(InputError, match="L50_h"):
+        grease.fit_base_oil_factor("urea", p.dm_mm, 10000.0, 150.0, 0.016, [1559.0])
+    with pytest.raises(InputError, match="L50_h"):
+        grease.fit_base_oil_factor("urea", p.dm_mm, 10000.0, 150.0, 0.016, [1559.0, -1.0])
+    with pytest.raises(InputError, match="conditions"):
+        grease.fit_base_oil_factor("urea", p.dm_mm, p.speed_rpm[:3], p.temperature_C, p.load_ratio, p.L50_h)
+    with pytest.raises(InputError, match="grease"):
+        grease.published_points("lithium")      # the reference gives no lithium data points
