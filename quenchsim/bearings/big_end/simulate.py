@@ -214,34 +214,46 @@ def integrate(p: Params, revolutions: float, samples_per_revolution: int, method
     return sol.t, sol.y, int(sol.nfev), wall
 
 
-def simulate(case: BigEndCase, set_number: int, mode: str, revolutions: float | None = None,
-             method: str | None = None) -> RunResult:
-    """Run one case: integrate, then sample pocket forces, loads and slip ratios (``method`` None:
-    the measured default of the mode)."""
-    p, cs, op = build_params(case, set_number, mode)
-    method = DEFAULT_INTEGRATOR[mode] if method is None else method
-    revs = op.revolutions if cs.revolutions is None else cs.revolutions
-    revs = revs if revolutions is None else revolutions
-    t, y, nfev, wall = integrate(p, revs, case.samples_per_revolution, method)
+def slip_histories(p: Params, t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Cage slip (T,), roller orbital slip (N, T) and roller spin slip (N, T) in % at the samples
+    (t, y) (definitions in the module docstring)."""
     n = p.n
     nq = 3 * n + 5
-    pocket = np.empty((n, t.size))
-    q_in = np.empty((n, t.size))
-    q_out = np.empty((n, t.size))
-    for k in range(t.size):
-        _, pocket[:, k], q_in[:, k], q_out[:, k] = evaluate(t[k], y[:, k], p)
-    theta = p.omega * t
-    omega_o = np.interp(theta % (2 * np.pi), p.table_theta, p.table_omega_o)
+    omega_o = np.interp((p.omega * t) % (2 * np.pi), p.table_theta, p.table_omega_o)
     orbit_th, spin_th = theoretical_speeds(p, omega_o)
     xr, yr = y[0:n], y[n:2 * n]
     vxr, vyr, wr = y[nq:nq + n], y[nq + n:nq + 2 * n], y[nq + 2 * n:nq + 3 * n]
     orbit = (xr * vyr - yr * vxr) / (xr**2 + yr**2)
     cage = y[nq + 3 * n + 2]
+    return (100.0 * (1.0 - (p.omega + cage) / (p.omega + orbit_th)),
+            100.0 * (1.0 - (p.omega + orbit) / (p.omega + orbit_th)),
+            100.0 * (1.0 - (wr - orbit) / spin_th))
+
+
+def simulate(case: BigEndCase, set_number: int, mode: str, revolutions: float | None = None,
+             method: str | None = None, overrides: dict[str, float] | None = None) -> RunResult:
+    """Run one case: integrate, then sample pocket forces, loads and slip ratios (``method`` None:
+    the measured default of the mode; ``overrides``: model parameters replaced by name, for
+    sensitivity studies, e.g. ``{"mu_pocket": 0.0}``)."""
+    p, cs, op = build_params(case, set_number, mode)
+    if overrides:
+        unknown = sorted(set(overrides) - set(Params._fields))
+        require(not unknown, "overrides", unknown, f"must be fields of Params {list(Params._fields)}")
+        p = p._replace(**overrides)
+    method = DEFAULT_INTEGRATOR[mode] if method is None else method
+    revs = op.revolutions if cs.revolutions is None else cs.revolutions
+    revs = revs if revolutions is None else revolutions
+    t, y, nfev, wall = integrate(p, revs, case.samples_per_revolution, method)
+    n = p.n
+    pocket = np.empty((n, t.size))
+    q_in = np.empty((n, t.size))
+    q_out = np.empty((n, t.size))
+    for k in range(t.size):
+        _, pocket[:, k], q_in[:, k], q_out[:, k] = evaluate(t[k], y[:, k], p)
+    cage_slip, orbital_slip, spin_slip = slip_histories(p, t, y)
     return RunResult(
-        mode=mode, clearance=cs, params=p, t=t, crank_angle=theta, y=y,
-        cage_slip_pct=100.0 * (1.0 - (p.omega + cage) / (p.omega + orbit_th)),
-        roller_orbital_slip_pct=100.0 * (1.0 - (p.omega + orbit) / (p.omega + orbit_th)),
-        roller_spin_slip_pct=100.0 * (1.0 - (wr - orbit) / spin_th),
+        mode=mode, clearance=cs, params=p, t=t, crank_angle=p.omega * t, y=y,
+        cage_slip_pct=cage_slip, roller_orbital_slip_pct=orbital_slip, roller_spin_slip_pct=spin_slip,
         pocket_force_n=pocket, inner_load_n=q_in, outer_load_n=q_out, revolutions=revs,
         transient_revolutions=min(case.transient_revolutions, 0.5 * revs), wall_time_s=wall,
         integrator=method, n_rhs=nfev,
