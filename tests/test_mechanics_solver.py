@@ -1,0 +1,50 @@
+"""Numerical machinery of the mechanics solver: the reused factorisation and the elastic-step shortcut
+give the answers of a fresh direct solve and of the thermo-elastic model."""
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from quenchsim.mechanics import load_mechanics
+from quenchsim.mechanics import verification as v
+from quenchsim.mechanics.constitutive import lame_bulk_shear, return_map
+from quenchsim.mechanics.solver import MechanicsSolver, _LinearSolver
+
+
+def _tube_stiffness(E_Pa: float) -> sp.csr_matrix:
+    mesh = v.tube_mesh(0.1, 0.15, 0.05, 4)
+    solver = MechanicsSolver(mesh, load_mechanics(v.uniform_material(2e11, 0.3), {"plasticity": False, "trip": False}))
+    shape = solver.asm.radius.shape
+    k, mu = lame_bulk_shear(np.full(shape, E_Pa), np.full(shape, 0.3))
+    K = solver.asm.stiffness(return_map(np.zeros(shape + (4,)), k, mu, None, None, None))
+    K.data[solver._zero_pos] = 0.0
+    K.data[solver._diag_pos] = 1.0
+    return K
+
+
+def test_reused_factorisation_solves_a_changed_matrix_like_a_fresh_direct_solve():
+    K_old, K_new = _tube_stiffness(2.0e11), _tube_stiffness(1.8e11)  # e.g. the next step, 10 % softer
+    b = np.random.default_rng(5).normal(size=K_old.shape[0])
+    linear = _LinearSolver()
+    linear.solve(K_old, b, 1e-12)  # factorises K_old
+    x = linear.solve(K_new, b, 1e-13)  # CG preconditioned by the factor of K_old
+    assert linear.factorizations == 1 and linear.cg_iterations > 0
+    exact = spla.spsolve(K_new.tocsc(), b)
+    assert np.linalg.norm(x - exact) < 1e-10 * np.linalg.norm(exact)
+
+
+def test_elastic_step_of_a_plastic_model_ends_in_one_newton_iteration_with_the_elastic_answer():
+    mesh = v.tube_mesh(0.1, 0.15, 0.05, 4)
+    results = {}
+    for name, options in (("elastic", {"plasticity": False, "trip": False}), ("plastic", {"trip": False})):
+        model = load_mechanics(v.uniform_material(2e11, 0.3, 1.2e-5, yield_Pa=1e12, hardening_Pa=1e9), options)
+        solver = MechanicsSolver(mesh, model)
+        T0, X = v.uniform_fields(solver, v.T_REF_C)
+        r = solver.asm.radius
+        T1 = v.T_REF_C - 50.0 * (r - 0.1) / 0.05  # a radial gradient: thermal stresses, far below yield
+        info = solver.step(T1, X, T0, X)
+        assert info.converged and info.plastic_points == 0
+        results[name] = (solver.displacement_m, info.newton_iterations)
+    assert results["plastic"][1] == 1
+    u_el, u_pl = results["elastic"][0], results["plastic"][0]
+    assert np.abs(u_pl - u_el).max() < 1e-8 * np.abs(u_el).max()
