@@ -24,7 +24,7 @@ import traceback
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-REPORT_MODULES = ("validation", "bench", "cct", "bath", "quenchsim.mechanics.report", "bearings_basics",
+REPORT_MODULES = ("validation", "sensitivity", "bench", "cct", "bath", "quenchsim.mechanics.report", "bearings_basics",
                   "bearings_runout", "bearings_gas_journal", "bearings_big_end", "sweep_bench")
 """Modules with a ``write(reports_dir)``, in the order of the index: names in quenchsim.report, or full
 dotted module paths."""

@@ -1,0 +1,152 @@
+"""reports/sensitivity.md: how far the unmeasured SUJ3 inputs move ring A's dimension change.
+
+The reference report used measured SUJ3 flow and TRIP data that are not published; ours are 100Cr6/52100
+literature values with stated uncertainties (materials/SUJ3.mechanics.toml header). This page perturbs
+one input at a time by its stated 1-sigma uncertainty (or switches a mechanism off) and reruns case A,
+condition 1, on the mesh x2 of the convergence study (its dimensions agree with the default mesh to
+0.002 mm, reports/validation.md), so a user can see which measurement would pin the prediction down.
+
+``write(reports_dir)`` writes each perturbed material as a complete TOML file (material + [mechanics])
+under ``runs/validation/sensitivity``, runs what is not cached (same resolved case and same material
+text) and writes ``sensitivity.md``.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import json
+import math
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import tomli_w
+
+from quenchsim.materials import load_material
+from quenchsim.report.validation import CASE_A, RUNS, cached_run, refined
+
+MESH_FACTOR = 2.0
+MEASURED_CHANGE_MM = {"id": 217.9 - 218.3, "od": 300.7 - 301.0}   # quench_cases.md, Table 3
+
+
+def _scaled(spec: Any, factor: float) -> Any:
+    """A property spec (number, {value}, {poly_T_C}, {T_C, value}) with its values times ``factor``."""
+    if isinstance(spec, (int, float)):
+        return spec * factor
+    out = dict(spec)
+    for key in ("value", "poly_T_C"):
+        if key in out:
+            v = out[key]
+            out[key] = [x * factor for x in v] if isinstance(v, list) else v * factor
+    return out
+
+
+def _scale_phases(table: dict[str, Any], factor: float, phases: tuple[str, ...] | None = None) -> None:
+    per = table["per_phase"]
+    for phase in list(per):
+        if phases is None or phase in phases:
+            per[phase] = _scaled(per[phase], factor)
+
+
+def _austenite_yield(f: float) -> Callable[[dict], None]:
+    return lambda m: _scale_phases(m["mechanics"]["plastic"]["yield_Pa"], f, ("austenite",))
+
+
+def _trip(f: float) -> Callable[[dict], None]:
+    return lambda m: _scale_phases(m["mechanics"]["trip"]["K_1_Pa"], f)
+
+
+def _hardening(f: float) -> Callable[[dict], None]:
+    return lambda m: _scale_phases(m["mechanics"]["plastic"]["hardening_Pa"], f)
+
+
+def _pearlite_rate(f: float) -> Callable[[dict], None]:
+    def change(m: dict) -> None:
+        m["kinetics"]["pearlite"]["ln_F"]["const"] -= math.log(f)   # tau ~ F: rate x f
+    return change
+
+
+# (label, what it is and why that size, material change, case overrides)
+VARIANTS: list[tuple[str, str, Callable[[dict], None] | None, dict[str, Any]]] = [
+    ("baseline", "materials/SUJ3 as shipped", None, {}),
+    ("austenite yield x1.4", "+1 sigma (+-40 %) of the austenite yield stress", _austenite_yield(1.4), {}),
+    ("austenite yield x0.6", "-1 sigma", _austenite_yield(0.6), {}),
+    ("hardening moduli x2", "+1 sigma (factor 2) of every phase's hardening modulus", _hardening(2.0), {}),
+    ("hardening moduli /2", "-1 sigma", _hardening(0.5), {}),
+    ("TRIP K x1.6", "+1 sigma (factor 1.6) of every TRIP constant", _trip(1.6), {}),
+    ("TRIP K /1.6", "-1 sigma", _trip(1 / 1.6), {}),
+    ("pearlite rate x3", "Li-model TTT times /3 (composition-based TTT models: ~80 % of steels within x3, "
+     "Saunders et al.)", _pearlite_rate(3.0), {}),
+    ("no TRIP", "transformation plasticity switched off", None, {"mechanics.trip": False}),
+    ("thermo-elastic", "plasticity and TRIP switched off: the phase volumes alone", None,
+     {"mechanics.trip": False, "mechanics.plasticity": False}),
+]
+
+
+def _material_file(change: Callable[[dict], None], folder: Path) -> Path:
+    material = copy.deepcopy(load_material("SUJ3"))
+    change(material)
+    text = tomli_w.dumps(material)
+    path = folder / f"SUJ3_{hashlib.sha1(text.encode()).hexdigest()[:10]}.toml"
+    folder.mkdir(parents=True, exist_ok=True)
+    if not path.is_file():
+        path.write_text(text)
+    return path
+
+
+def write(reports_dir: Path, runs_dir: Path = RUNS) -> list[Path]:
+    reports_dir = Path(reports_dir)
+    reports_dir.mkdir(parents=True, exist_ok=True)
+    folder = Path(runs_dir) / "sensitivity"
+    rows: dict[str, dict[str, Any]] = {}
+    for label, _, change, overrides in VARIANTS:
+        case = refined(CASE_A, "1", mesh=MESH_FACTOR)
+        tag = f"crb_outer_ring_1_mesh{MESH_FACTOR:g}"
+        if change is not None:
+            path = _material_file(change, folder)
+            case.data["material"] = str(path.resolve())
+            tag = f"sensitivity/{path.stem}"
+        for key, value in overrides.items():
+            section, name = key.split(".")
+            case.data[section][name] = value
+            tag += f"_{name}{int(value)}"
+        summary = json.loads((cached_run(case, Path(runs_dir) / tag) / "summary.json").read_text())
+        rows[label] = summary
+    base = rows["baseline"]["dimensions_mm"]["change"]
+    md = ["# Sensitivity of ring A's dimension change to the unmeasured SUJ3 inputs", "",
+          "Generated by `quenchsim.report.sensitivity.write` (`quenchsim validate`). Case A, condition 1, mesh x2 "
+          "(dimensions within 0.002 mm of the default mesh, reports/validation.md). One input at a time, by its "
+          "stated 1-sigma uncertainty (materials/SUJ3.mechanics.toml header) or switched off.", "",
+          f"Measured change: ID {MEASURED_CHANGE_MM['id']:+.2f} mm, OD {MEASURED_CHANGE_MM['od']:+.2f} mm "
+          "(quench_cases.md, Table 3).", "",
+          "| variant | what | ID change mm | OD change mm | width change mm | dID vs baseline | dOD vs baseline "
+          "| martensite mean | pearlite mean / max | P1 t(500 C) s |",
+          "|---|---|---|---|---|---|---|---|---|---|"]
+    for label, what, _, _ in VARIANTS:
+        s = rows[label]
+        c = s["dimensions_mm"]["change"]
+        ph = s["phases_final"]
+        md.append(f"| {label} | {what} | {c['id']:+.3f} | {c['od']:+.3f} | {c['width']:+.3f} | "
+                  f"{c['id'] - base['id']:+.3f} | {c['od'] - base['od']:+.3f} | {ph['martensite']['mean']:.3f} | "
+                  f"{ph['pearlite']['mean']:.3f} / {ph['pearlite']['max']:.3f} | "
+                  f"{s['probes']['P1']['t_to_500C_s']:.1f} |")
+    elastic = rows["thermo-elastic"]["dimensions_mm"]["change"]
+    largest = max(abs(rows[label]["dimensions_mm"]["change"]["id"] - base["id"])
+                  for label, _, change, _ in VARIANTS if change is not None)
+    md += ["", "How to read it:",
+           f"* The thermo-elastic row is the phase-volume part alone (ID {elastic['id']:+.3f}, OD {elastic['od']:+.3f} mm): "
+           "martensite grows the ring, retained austenite shrinks it. Everything between that row and the "
+           "baseline is plastic flow and TRIP, i.e. governed by the flow and TRIP data that were not measured for SUJ3.",
+           "* A perturbation whose |dID| or |dOD| is comparable with the 0.15 mm tolerance of the regression target "
+           "is an input that must be measured before the target can be a prediction rather than a fit.",
+           f"* To meet the measurement, plastic flow and TRIP would have to change the dimensions by "
+           f"{MEASURED_CHANGE_MM['id'] - elastic['id']:+.2f} mm (ID) / {MEASURED_CHANGE_MM['od'] - elastic['od']:+.2f} mm (OD) "
+           f"beyond the phase volumes; in the baseline they give {base['id'] - elastic['id']:+.2f} / "
+           f"{base['od'] - elastic['od']:+.2f} mm, and the largest single 1-sigma perturbation above moves ID by "
+           f"{largest:.2f} mm. The measured shrinkage is therefore not within one-at-a-time reach of the stated "
+           "uncertainties: either several inputs sit at the edge of their ranges together, or the kinetics/volume "
+           "data differ (the report saw a ferrite-pearlite layer that these kinetics do not produce; faster pearlite "
+           "alone makes this ring grow more, row 'pearlite rate x3').", ""]
+    (reports_dir / "sensitivity.md").write_text("\n".join(md))
+    return [reports_dir / "sensitivity.md"]
