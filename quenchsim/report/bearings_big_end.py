@@ -43,9 +43,10 @@ BENCH_BUDGET = 150_000
 # Diagnosis of the missed points: short runs (crank revolutions, the first excluded) with one model
 # parameter changed, (label, mode, overrides).
 DIAGNOSIS_REVOLUTIONS = 3
-SENSITIVITY = (("engine: pocket friction 0 (reference 0.05)", "engine", {"mu_pocket": 0.0}),
+SENSITIVITY = (("engine: pocket friction 0 (case file 0.05)", "engine", {"mu_pocket": 0.0}),
                ("engine: film traction mu_lim x2 (0.08)", "engine", {"mu_lim": 0.08}),
-               ("engine: solid cage-land friction 0 (reference 0.05)", "engine", {"mu_guide": 0.0}),
+               ("engine: no thermal film reduction (beta = 0: phi_T = 1)", "engine", {"beta_t": 0.0}),
+               ("engine: solid cage-land friction 0 (case file 0.05)", "engine", {"mu_guide": 0.0}),
                ("static: no cage-land film (lands 0: no film force, no Couette drag)", "static", {"lands": 0.0}))
 
 
