@@ -7,6 +7,7 @@ import pytest
 from scipy.integrate import quad
 
 from quenchsim.bearings.big_end.contact import coulomb_friction, damped_contact_force, line_contact_force
+from quenchsim.bearings.big_end.dynamics import entrainment_speed
 from quenchsim.bearings.big_end.ehl import (hertz_line_max_pressure, pan_hamrock_central_film,
                                             thermal_reduction_factor, traction_coefficient)
 from quenchsim.bearings.big_end.engine import CrankSlider, GasCycle, big_end_load, gas_force
@@ -160,3 +161,22 @@ def test_walther_reproduces_data_points_and_unknown_oil():
     assert 0.01 < oil.dynamic_viscosity_Pa_s < 0.04
     with pytest.raises(InputError, match="lubrication.oil"):
         load_oil("whale_oil", 70.0)
+
+
+@pytest.mark.parametrize("omega_o", [-733.0, -520.0, 300.0])
+def test_entrainment_speed_at_the_kinematic_orbit_matches_harris(omega_o):
+    """Pure rolling at the kinematic orbit: both contacts entrain at (d_m^2 - D^2)/(4 d_m) |omega_i - omega_o|
+    (Harris & Kotzalas 2007), with the inner ring at rest (frame of the pin) and the bore turning at omega_o."""
+    r_i, r = 7.2e-3, 1.5e-3
+    r_o = r_i + 2 * r
+    d_m, dia = r_i + r_o, 2 * r
+    orbit = omega_o * r_o / (r_i + r_o)
+    spin = orbit * r_i / r + orbit  # rolling on the pin: r (w - Omega) = Omega R_i, w relative to the frame
+    d = r_i + r
+    u_c = orbit * d
+    expected = (d_m**2 - dia**2) / (4 * d_m) * abs(omega_o)
+    pin = entrainment_speed(u_c, u_c - r * spin, 0.0, d, d - r)
+    bore = entrainment_speed(u_c, u_c + r * spin, omega_o * r_o, d, d + r)
+    assert pin == pytest.approx(expected, rel=1e-12)
+    assert bore == pytest.approx(expected, rel=1e-12)
+    assert u_c + r * spin == pytest.approx(omega_o * r_o, rel=1e-12)  # also rolls on the bore

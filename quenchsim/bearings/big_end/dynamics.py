@@ -103,6 +103,20 @@ def _traction(q: float, ue: float, slide: float, r_eff: float, p: Params) -> flo
 
 
 @njit(cache=True)
+def entrainment_speed(centre_speed: float, surface_speed: float, race_surface_speed: float,
+                      centre_distance: float, contact_distance: float) -> float:
+    """Entrainment (rolling) speed u_e of a roller-race contact [m/s]: the mean of the two surface
+    speeds relative to the contact point, which travels with the roller along the race,
+        u_e = | (u_race + u_roller) / 2 - u_centre rho_c / rho_r |,
+    all tangential and measured from the race centre (translating with it): u_centre the roller centre
+    (distance rho_r), u_roller = u_centre +- r w its surface at the contact (distance rho_c), u_race the
+    race surface. Pure rolling at orbit speed Omega gives Omega R_i (pin) and |Omega_o - Omega| R_o
+    (bore), i.e. (d_m^2 - D^2) / (4 d_m) |omega_i - omega_o| at the kinematic orbit (Harris &
+    Kotzalas, Rolling Bearing Analysis, 5th ed. 2007, vol. 1 ch. 8)."""
+    return abs(0.5 * (race_surface_speed + surface_speed) - centre_speed * contact_distance / centre_distance)
+
+
+@njit(cache=True)
 def _pocket_face(sgn: float, q: float, dx: float, dy: float, erx: float, ery: float, etx: float, ety: float,
                  vxr: float, vyr: float, wr: float, vxc: float, vyc: float, wc: float,
                  p: Params) -> tuple[float, float, float, float]:
@@ -174,7 +188,8 @@ def evaluate(t: float, y: np.ndarray, p: Params) -> tuple[np.ndarray, np.ndarray
         q_in = damped_contact_force(p.r_in + r - d, -(vxr * nx + vyr * ny), l_r, p.e_star, p.m_roller,
                                     p.damping_ratio)
         ut = vxr * tx + vyr * ty
-        mu = _traction(q_in, 0.5 * abs(r * wr + ut), ut - r * wr, p.r_eff_in[j], p) if q_in > 0.0 else 0.0
+        ue = entrainment_speed(ut, ut - r * wr, 0.0, d, d - r)
+        mu = _traction(q_in, ue, ut - r * wr, p.r_eff_in[j], p) if q_in > 0.0 else 0.0
         fxr = q_in * nx - mu * q_in * tx
         fyr = q_in * ny - mu * q_in * ty
         mr = r * mu * q_in
@@ -190,9 +205,10 @@ def evaluate(t: float, y: np.ndarray, p: Params) -> tuple[np.ndarray, np.ndarray
         q_out = damped_contact_force(d + r - p.r_out, (vxr - vxo) * nx + (vyr - vyo) * ny, l_r, p.e_star,
                                      p.m_roller, p.damping_ratio)
         if q_out > 0.0:
-            ut_r = vxr * tx + vyr * ty
-            ut_o = vxo * tx + vyo * ty + omega_o * p.r_out
-            mu = _traction(q_out, 0.5 * abs(r * wr + ut_o - ut_r), ut_r + r * wr - ut_o, p.r_eff_out[j], p)
+            ut_r = (vxr - vxo) * tx + (vyr - vyo) * ty  # relative to the outer-ring centre
+            ut_o = omega_o * p.r_out
+            ue = entrainment_speed(ut_r, ut_r + r * wr, ut_o, d, d + r)
+            mu = _traction(q_out, ue, ut_r + r * wr - ut_o, p.r_eff_out[j], p)
             fx = q_out * nx + mu * q_out * tx
             fy = q_out * ny + mu * q_out * ty
             fxr -= fx
