@@ -87,3 +87,29 @@ def test_the_cli_lists_the_known_modules_and_rejects_an_unknown_one(tmp_path):
     res = subprocess.run([sys.executable, "-m", "quenchsim.cli", "validate", "--reports", str(tmp_path / "r"),
                           "--only", "nonsense"], capture_output=True, text=True, timeout=120)
     assert res.returncode == 2 and "--only" in res.stderr and "sweep_bench" in res.stderr
+
+
+def test_cached_run_is_reused_only_with_the_same_inputs_and_code(tmp_path, monkeypatch):
+    """A finished validation run is reused; a changed case or a changed code fingerprint reruns it."""
+    from quenchsim.case import case_from_dict
+    from quenchsim.report import validation
+    from tests.test_sweep import small_case
+
+    calls = []
+
+    def fake_run(case, out, progress=True):
+        calls.append(case.data["quench"]["time_s"])
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "case.toml").write_text(validation._toml(case))
+        (out / "summary.json").write_text('{"status": "ok"}')
+
+    monkeypatch.setattr("quenchsim.simulation.run_case", fake_run)
+    case = case_from_dict(small_case(), None, {})
+    validation.cached_run(case, tmp_path / "r")
+    validation.cached_run(case, tmp_path / "r")
+    assert len(calls) == 1
+    validation.cached_run(case_from_dict(small_case(), None, {"quench.time_s": 21.0}), tmp_path / "r")
+    assert len(calls) == 2
+    monkeypatch.setattr(validation, "code_fingerprint", lambda: "another version")
+    validation.cached_run(case_from_dict(small_case(), None, {"quench.time_s": 21.0}), tmp_path / "r")
+    assert len(calls) == 3

@@ -2,12 +2,14 @@
 and the mesh / time-step convergence of case A, against the measured and published numbers.
 
 ``write(reports_dir)`` runs what it needs (cached under ``runs/validation``: a run whose resolved
-inputs are unchanged and whose summary says ok is not run again) and writes ``validation.md``,
+inputs, code and data are unchanged and whose summary says ok is not run again) and writes ``validation.md``,
 ``validation.json`` and the PNGs into ``reports_dir``.
 """
 
 from __future__ import annotations
 
+import functools
+import hashlib
 import json
 import tomllib
 from pathlib import Path
@@ -29,16 +31,35 @@ MESH_FACTORS = (2.0, 1.0, 0.5)               # element-size multipliers of the c
 STEP_FACTORS = (2.0, 1.0, 0.5)               # multipliers of the per-step temperature/phase limits
 
 
+@functools.lru_cache(maxsize=1)
+def code_fingerprint() -> str:
+    """SHA-1 over every source and data file of the package and of ``materials/``: a cached run is reused
+    only if neither its inputs nor the code and data that produced it have changed."""
+    root = Path(__file__).resolve().parents[2]
+    digest = hashlib.sha1()
+    for folder in (root / "quenchsim", root / "materials"):
+        for path in sorted(folder.rglob("*")):
+            if path.suffix in (".py", ".toml") and "__pycache__" not in path.parts:
+                digest.update(path.relative_to(root).as_posix().encode())
+                digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
 def cached_run(case: Case, run_dir: Path) -> Path:
-    """Run ``case`` into ``run_dir`` unless the same resolved inputs already finished there."""
+    """Run ``case`` into ``run_dir`` unless the same resolved inputs already finished there with the same
+    code and data (:func:`code_fingerprint`), so an interrupted ``quenchsim validate`` resumes cheaply and
+    a changed model is always rerun."""
     from quenchsim.simulation import run_case
 
-    done = run_dir / "summary.json"
-    if done.is_file() and (run_dir / "case.toml").is_file():
+    done, stamp = run_dir / "summary.json", run_dir / "code_fingerprint.txt"
+    fingerprint = code_fingerprint()
+    if done.is_file() and (run_dir / "case.toml").is_file() and stamp.is_file():
         same = tomllib.loads((run_dir / "case.toml").read_text()) == tomllib.loads(_toml(case))
-        if same and json.loads(done.read_text()).get("status") == "ok":
+        if same and stamp.read_text() == fingerprint and json.loads(done.read_text()).get("status") == "ok":
             return run_dir
+    stamp.unlink(missing_ok=True)
     run_case(case, run_dir, progress=True)
+    stamp.write_text(fingerprint)
     return run_dir
 
 
