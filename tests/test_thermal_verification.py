@@ -81,3 +81,30 @@ def test_step_through_a_boiling_curve_solves_the_nonlinear_step_equations():
         assert np.abs(spla.spsolve(linear.tocsc(), residual)).max() < 0.1
         solver.commit(step)
     assert solver.T.min() < 450.0  # the surface did cool through the boiling range
+
+
+def test_step_linear_solver_matches_a_direct_solve_in_every_mode():
+    """Jacobi CG (short steps), CG preconditioned by a reused factor (long steps, after the switch) and
+    the pivoting fallback for a matrix that is not positive definite all give the direct solution."""
+    import numpy as np
+    import scipy.sparse.linalg as spla
+
+    from quenchsim.thermal.linear import StepLinearSolver
+
+    fe, _ = _cylinder_solver()
+    shape, facet_shape = fe.r_qp.shape, fe.facet_r.shape
+    b = np.random.default_rng(9).normal(size=fe.n_dofs)
+    linear = StepLinearSolver(rtol=1e-13, jacobi_max=40)
+
+    def check(A):
+        x = linear.solve(A, b, np.zeros_like(b))
+        exact = spla.spsolve(A.tocsc(), b)
+        assert np.linalg.norm(x - exact) < 1e-10 * np.linalg.norm(exact)
+
+    check(fe.system(np.full(shape, 3.9e6 / 0.05), np.full(shape, 30.0), np.full(facet_shape, 2000.0)))
+    assert not linear.use_factor  # a short step: Jacobi CG was enough
+    for dt in (60.0, 90.0, 120.0):  # long steps: one factorisation, reused as preconditioner
+        check(fe.system(np.full(shape, 3.9e6 / dt), np.full(shape, 30.0), np.full(facet_shape, 10.0)))
+    assert linear.use_factor and linear.factorizations == 1
+    # a strongly negative surface term (flux falling steeply with T_s): indefinite, still solved
+    check(fe.system(np.full(shape, 3.9e6 / 120.0), np.full(shape, 30.0), np.full(facet_shape, -4e4)))

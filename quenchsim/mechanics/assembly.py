@@ -39,6 +39,7 @@ class AxisymmetricAssembler:
             B[:, :, 2, j] = val[0] / self.radius
             B[:, :, 3, j] = (grad[0, 1] + grad[1, 0]) / SQRT2
         self.B = B
+        self._B_rows = B.reshape(ne, nq * 4, n_local)  # (ne, nq*4, 12) view: strains and forces are batched GEMVs
         B_vol = B[:, :, 0] + B[:, :, 1] + B[:, :, 2]  # m^T B, (ne, nq, 12)
         B_dev = B - B_vol[:, :, None, :] / 3.0 * M_VEC[None, None, :, None]
         # flattened (ne, nq, 144) kernels b_v b_v^T and B^T P B side by side along the quadrature axis:
@@ -58,11 +59,12 @@ class AxisymmetricAssembler:
 
     def strain(self, u: np.ndarray) -> np.ndarray:
         """Mandel strain (ne, nq, 4) of the displacement vector u."""
-        return np.einsum("eqaj,ej->eqa", self.B, u[self.element_dofs], optimize=True)
+        return np.matmul(self._B_rows, u[self.element_dofs][:, :, None]).reshape(self.radius.shape + (4,))
 
     def internal_force(self, stress: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """f_int = int B^T sigma r dA and the same sum of absolute values (a round-off scale)."""
-        fe = np.einsum("eqaj,eqa,eq->ej", self.B, stress, self.weights, optimize=True)
+        ne = self.radius.shape[0]
+        fe = np.matmul((stress * self.weights[..., None]).reshape(ne, 1, -1), self._B_rows)[:, 0]
         dofs = self.element_dofs.ravel()
         return (np.bincount(dofs, weights=fe.ravel(), minlength=self.n_dofs),
                 np.bincount(dofs, weights=np.abs(fe).ravel(), minlength=self.n_dofs))
