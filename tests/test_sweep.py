@@ -233,28 +233,32 @@ def test_example_case_script_runs_and_a_thicker_wall_ends_softer(tmp_path):
     assert thick["hardness.core_HRC"] < thin["hardness.core_HRC"]
 
 
+_FAULTS_SCRIPT = """
+import resource, sys
+import numpy as np
+from quenchsim.sweep import keep_freed_memory
+
+def faults_per_array():
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+    for _ in range(20):
+        a = np.ones(500_000)
+        del a
+    return (resource.getrusage(resource.RUSAGE_SELF).ru_minflt - before) / 20
+
+under_dask = faults_per_array()
+ok = keep_freed_memory()
+faults_per_array()  # the first array grows the heap once
+print(under_dask, ok, faults_per_array())
+"""
+
+
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="glibc malloc")
 def test_keep_freed_memory_stops_page_faults_of_reallocated_arrays():
-    """What a Dask nanny's MALLOC_TRIM_THRESHOLD_ does (fixed 128 KiB mmap threshold): every 4 MB array is
-    mapped afresh (~1000 page faults); after keep_freed_memory() the freed block is reused (none)."""
-    import ctypes
-    import ctypes.util
-    import resource
-
-    import numpy as np
-
-    from quenchsim.sweep import keep_freed_memory
-
-    def faults_per_array() -> float:
-        before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
-        for _ in range(20):
-            a = np.ones(500_000)
-            del a
-        return (resource.getrusage(resource.RUSAGE_SELF).ru_minflt - before) / 20
-
-    mallopt = ctypes.CDLL(ctypes.util.find_library("c")).mallopt
-    assert mallopt(-3, 128 * 1024) and mallopt(-1, 65536)  # M_MMAP_THRESHOLD, M_TRIM_THRESHOLD as under Dask
-    assert faults_per_array() > 500
-    assert keep_freed_memory()
-    faults_per_array()  # the first array grows the heap once
-    assert faults_per_array() < 10
+    """A fresh interpreter started like a Dask nanny's worker (MALLOC_TRIM_THRESHOLD_=65536, which also fixes
+    glibc's mmap threshold at 128 KiB) maps every 4 MB array afresh (~1000 page faults); after
+    keep_freed_memory() the freed block is reused (none)."""
+    env = {**os.environ, "MALLOC_TRIM_THRESHOLD_": "65536"}
+    out = subprocess.run([sys.executable, "-c", _FAULTS_SCRIPT], capture_output=True, text=True, env=env, timeout=120)
+    assert out.returncode == 0, out.stderr
+    under_dask, ok, after = out.stdout.split()
+    assert float(under_dask) > 500 and ok == "True" and float(after) < 10, out.stdout
