@@ -77,12 +77,11 @@ class AxisymmetricAssembler:
         ne, n_local = self.element_dofs.shape
         coefficient = np.concatenate([update.bulk * w, 2.0 * update.shear * update.beta * w], axis=1)
         Ke = np.einsum("eq,eqk->ek", coefficient, self.kernel).reshape(ne, n_local, n_local)
-        soft = update.c != update.beta
-        if soft.any():
-            e = np.flatnonzero(soft.any(axis=1))
-            Bn = np.einsum("eqa,eqaj->eqj", update.normal[e], self.B[e])  # (e, q, 12)
-            weighted = Bn.transpose(0, 2, 1) * (2.0 * update.shear * (update.c - update.beta) * w)[e][:, None, :]
-            Ke[e] += np.matmul(weighted, Bn)
+        soft_weight = 2.0 * update.shear * (update.c - update.beta) * w  # zero at elastic points
+        if soft_weight.any():
+            # over all elements: cheaper than gathering the plastic ones (most are plastic during a quench)
+            Bn = np.matmul(update.normal[:, :, None, :], self.B)[:, :, 0, :]  # n^T B, (ne, nq, 12)
+            Ke += np.matmul(Bn.transpose(0, 2, 1) * soft_weight[:, None, :], Bn)
         data = np.bincount(self._scatter, weights=Ke.ravel(), minlength=self.nnz)
         return sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n_dofs, self.n_dofs))
 

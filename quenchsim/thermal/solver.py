@@ -127,8 +127,9 @@ class ThermalSolver:
             # Newton on the surface flux q = h(T_s)(T_s - T_inf): dq/dT = h + h'(T_s)(T_s - T_inf), negative
             # where boiling makes q fall with T_s. Exact at first (measured on case A, t = 1-40 s: 3-4
             # iterations instead of 6-12 with the floor, the iterate 2x closer to the converged step); once a
-            # correction grows instead of shrinking or an iterate leaves the physical range, kept >= 0.1 h for
-            # the rest of the step (a damped, positive Jacobian). The residual, hence the solution, is the same.
+            # correction grows instead of shrinking or an iterate leaves the physical range, that iterate is
+            # dropped and the flux derivative kept >= 0.1 h for the rest of the step (a damped, positive
+            # Jacobian). The residual, hence the solution, is the same.
             Ts = fe.at_facet_qp(T_iter)
             h = htc(Ts.reshape(-1), t_new).reshape(Ts.shape)
             dh = (htc(Ts.reshape(-1) + self.htc_probe_K, t_new).reshape(Ts.shape) - h) / self.htc_probe_K
@@ -147,11 +148,13 @@ class ThermalSolver:
                 continue
             change, last_change = float(np.max(np.abs(T_next - T_iter))), change
             step_change = float(np.max(np.abs(T_next - self.T)))
+            if not damped and change > last_change:
+                damped = True  # the exact-derivative iteration diverges: go on damped from the last iterate
+                continue
             T_iter = T_next
             # converged when the last correction is below the tolerance or 0.5 % of the step's change
             if change < max(self.picard_tol_K, 5e-3 * step_change):
                 break
-            damped = damped or change > last_change
         else:
             raise SolverError(f"thermal Picard iteration did not converge in {self.max_iterations} iterations "
                               f"(dt = {dt_s:g} s at t = {self.time_s:g} s; last change {change:.3g} K)")
