@@ -46,7 +46,8 @@ DIAGNOSIS_REVOLUTIONS = 3
 SENSITIVITY = (("engine: pocket friction 0 (case file 0.05)", "engine", {"mu_pocket": 0.0}),
                ("engine: film traction mu_lim x2 (0.08)", "engine", {"mu_lim": 0.08}),
                ("engine: no thermal film reduction (beta = 0: phi_T = 1)", "engine", {"beta_t": 0.0}),
-               ("engine: solid cage-land friction 0 (case file 0.05)", "engine", {"mu_guide": 0.0}),
+               ("engine: solid cage-land friction 0.05 (case file 0: film-only guidance as in the reference)",
+                "engine", {"mu_guide": 0.05}),
                ("static: no cage-land film (lands 0: no film force, no Couette drag)", "static", {"lands": 0.0}))
 
 
@@ -374,12 +375,14 @@ def _diagnosis_section(case, engine: RunResult, static: RunResult, reports_dir: 
         "",
         "Conclusion: no error of definition, averaging, static set-up, frame terms or loads was found (the frame "
         "terms are checked by the momentum/energy test, the loads by the crank-slider and gas-force tests). "
-        "Both gaps come from model data the reference does not give: the spin slip is set by the ratio of "
-        "pocket friction to film traction on the lightly loaded side rollers (assumed film traction "
-        f"mu_lim = {p_e.mu_lim:g}), the static cage slip by the Couette drag of the assumed cage lands "
-        f"({p_e.land_width * 1e3:.2f} mm), the engine cage slip by the assumed solid land friction "
-        f"({p_e.mu_guide:g} below a {p_e.guide_min_film * 1e6:g} um film). The model was not changed to reach "
-        "the paper's numbers: which values the paper used for these is not known.",
+        "The cage-land guidance follows the reference's model, a short journal bearing with squeeze film and "
+        f"no Coulomb land friction (case file guide_friction = {p_e.mu_guide:g}; the solid land contact below a "
+        f"{p_e.guide_min_film * 1e6:g} um film carries normal load only). With a boundary friction of 0.05 at the "
+        "lands, the engine cage, thrown onto the con-rod bore, is dragged along with the con-rod swing and its "
+        "slip drops to the static level (row above). The spin slip is set by the ratio of pocket friction "
+        f"(0.05, reference) to film traction (assumed mu_lim = {p_e.mu_lim:g}) on the lightly loaded side rollers, "
+        "and the static cage slip by the Couette drag of the assumed cage lands "
+        f"({p_e.land_width * 1e3:.2f} mm); which traction and land data the paper used is not known.",
         "",
     ]
     return lines
