@@ -370,8 +370,12 @@ def _client(scheduler: str | None, workers: int) -> tuple[Any, Any]:
     logging.getLogger("distributed").setLevel(logging.ERROR)
     if scheduler:
         return Client(scheduler, timeout="30s"), None
-    # the workers' statistical profiler samples the case's thread every 10 ms: ~6 % of a case's CPU time
-    with dask.config.set({"distributed.worker.profile.enabled": False}):
+    # the workers' statistical profiler samples the case's thread every 10 ms: ~6 % of a case's CPU time;
+    # worker-saturation 1.0: a case goes to a worker only when its thread is free (the default 1.1 lets a
+    # one-thread worker queue a second case, so the last cases can wait behind a long one while the other
+    # worker idles)
+    with dask.config.set({"distributed.worker.profile.enabled": False,
+                          "distributed.scheduler.worker-saturation": 1.0}):
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
                                silence_logs=logging.ERROR)
     return Client(cluster), cluster
