@@ -19,11 +19,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-
-def _dot(a: np.ndarray, b: np.ndarray) -> float:
-    """Dot product without BLAS (a threaded BLAS dot of a few thousand entries costs far more than
-    the product itself on a loaded machine)."""
-    return float(np.einsum("i,i->", a, b))
+from quenchsim.linalg import dot, norm, pcg, symmetric_lu
 
 
 class StepLinearSolver:
@@ -39,58 +35,33 @@ class StepLinearSolver:
         self.cg_iterations = 0
 
     def solve(self, A: sp.csr_matrix, b: np.ndarray, x0: np.ndarray) -> np.ndarray:
-        target = self.rtol * np.sqrt(_dot(b, b))
+        target = self.rtol * norm(b)
         x = x0.copy()
         if not self.use_factor:
             inv_diag = 1.0 / A.diagonal()
-            done = self._pcg(A, b, x, target, lambda r: inv_diag * r, self.jacobi_max)
+            done, its = pcg(A, b, x, target, lambda r: inv_diag * r, self.jacobi_max)
+            self.cg_iterations += its
             if done is not None:
                 return x if done else spla.spsolve(A.tocsc(), b)
             self.use_factor = True  # from here on the steps are long: keep a factorisation
         if self._lu is not None:
-            done = self._pcg(A, b, x, target, self._lu.solve, self.max_cg)
+            done, its = pcg(A, b, x, target, self._lu.solve, self.max_cg)
+            self.cg_iterations += its
             if done:
                 return x
         return self._factor_and_solve(A, b)
 
     def _factor_and_solve(self, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
-        """Refactorise (symmetric mode: same ordering of rows and columns, no pivoting) and solve; sparse
-        LU with pivoting if the matrix is not positive definite."""
+        """Refactorise (symmetric mode, no pivoting) and solve; sparse LU with pivoting if the matrix is
+        not positive definite."""
         try:
-            self._lu = spla.splu(A.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                                 options={"SymmetricMode": True})
+            self._lu = symmetric_lu(A)
         except RuntimeError:  # zero pivot: not positive definite
             self._lu = None
             return spla.spsolve(A.tocsc(), b)
         self.factorizations += 1
         x = self._lu.solve(b)
-        if not np.sqrt(_dot(r := b - A @ x, r)) <= 1e3 * self.rtol * np.sqrt(_dot(b, b)):
+        if not norm(b - A @ x) <= 1e3 * self.rtol * norm(b):
             self._lu = None  # an unpivoted factor of an indefinite matrix: do not reuse it
             return spla.spsolve(A.tocsc(), b)
         return x
-
-    def _pcg(self, A: sp.csr_matrix, b: np.ndarray, x: np.ndarray, target: float, precondition,
-             max_iterations: int) -> bool | None:
-        """Preconditioned CG from x (updated in place). True: converged; None: not within
-        ``max_iterations``; False: breakdown (p.Ap <= 0, the matrix is not positive definite)."""
-        r = b - A @ x
-        if np.sqrt(_dot(r, r)) <= target:
-            return True
-        z = precondition(r)
-        p = z.copy()
-        rz = _dot(r, z)
-        for _ in range(max_iterations):
-            Ap = A @ p
-            pAp = _dot(p, Ap)
-            if not pAp > 0.0:
-                return False
-            step = rz / pAp
-            x += step * p
-            r -= step * Ap
-            self.cg_iterations += 1
-            if np.sqrt(_dot(r, r)) <= target:
-                return True
-            z = precondition(r)
-            rz, rz_old = _dot(r, z), rz
-            p = z + (rz / rz_old) * p
-        return None
