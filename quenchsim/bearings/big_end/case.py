@@ -259,9 +259,10 @@ def load_case(path: str | Path) -> BigEndCase:
     require(lubrication.film_hi > lubrication.film_lo, "lubrication.film_parameter_full", lubrication.film_hi,
             "must exceed film_parameter_boundary")
     mod = _section(data, "model")
-    frictions = [_get(mod, "model", k, positive=False) for k in ("boundary_friction", "pocket_friction", "guide_friction")]
-    for k, mu in zip(("boundary_friction", "pocket_friction", "guide_friction"), frictions):
-        require(mu >= 0.0, f"model.{k}", mu, "must be >= 0 (a friction coefficient)")
+    frictions = []
+    for k in ("boundary_friction", "pocket_friction", "guide_friction"):
+        frictions.append(_get(mod, "model", k, positive=False))
+        require(frictions[-1] >= 0.0, f"model.{k}", frictions[-1], "must be >= 0 (a friction coefficient)")
     model = Model(*frictions, *(_get(mod, "model", k) for k in (
         "contact_damping_ratio", "friction_regularisation_m_s", "entrainment_floor_m_s")),
         guide_min_film=_get(mod, "model", "guide_min_film_um") * 1e-6)
