@@ -34,6 +34,8 @@ LINEAR_RTOL = 1e-10
 """Relative residual of the linear solves of a linear (elastic/TRIP) step."""
 FORCING_MAX = 1e-2
 """Largest relative residual of a linear solve inside a plastic Newton iteration (inexact Newton)."""
+ROUND_OFF = 1e-13
+"""Residuals below this fraction of the forces of D |eps| are round-off (measured floor: ~7e-15 of it)."""
 LINE_SEARCH_CUTS = 4
 """Newton steps are halved up to this many times until the residual norm decreases."""
 AXIS_TOLERANCE = 1e-9
@@ -200,6 +202,9 @@ class MechanicsSolver:
         u = self.displacement_m.copy()
         update, residual, norm, f_abs = evaluate(u)
         reference = max(_norm(f_ext), norm)  # the step's out-of-balance load
+        # round-off scale of sigma = D (eps - eps_free): the forces of D |eps| (|f_abs| misses it when the
+        # two strains cancel, e.g. a cooled, stress-free part, whose residual then stalls ~1e-14 below it)
+        strain_scale = _norm(asm.internal_force((3.0 * bulk + 2.0 * shear)[..., None] * np.abs(asm.strain(u)))[1])
         load = float(np.sqrt(np.mean((free1 - free0) ** 2)))
         if self._last_increment is not None and self._last_load > 0.0:
             # predictor: the last displacement increment scaled by the ratio of free-strain increments
@@ -210,7 +215,7 @@ class MechanicsSolver:
                 update, residual, norm, f_abs = candidate
         history = [norm]
         for iteration in range(model.max_newton_iterations + 1):
-            if norm <= model.newton_rtol * reference + 1e-12 * f_abs:
+            if norm <= model.newton_rtol * reference + max(1e-12 * f_abs, ROUND_OFF * strain_scale):
                 self._last_increment, self._last_load = u - self.displacement_m, load
                 self._commit(u, free1, update, eq_plastic)
                 return StepInfo(True, iteration, norm, int(np.count_nonzero(update.d_eq_plastic)),
