@@ -5,14 +5,14 @@ import pytest
 
 from quenchsim.bath import BoundaryHTC, air_htc, boundary_htc, parse_bath
 from quenchsim.bath.outline import probe_points, ring_section_points
-from quenchsim.bath.reference import reference_bath_spec
+from reference_cases import case_a_bath_spec
 from quenchsim.errors import InputError
 
 RING_A = ring_section_points(0.2183, 0.301, 0.173, chamfer_m=0.002, spacing_m=4e-3)
 
 
 def spec(**changes):
-    s = reference_bath_spec("case_A", 1)
+    s = case_a_bath_spec("1")
     s.update(changes)
     return s
 

@@ -7,7 +7,7 @@ from quenchsim.bath import boundary_htc, parse_bath
 from quenchsim.bath import correlations as c
 from quenchsim.bath.quenchant import load_oil
 from quenchsim.bath.outline import probe_points, ring_section_points
-from quenchsim.bath.reference import reference_bath_spec
+from reference_cases import case_a_bath_spec
 
 PROBE = probe_points(spacing_m=5e-3)
 STILL_40C = {"quenchant": "reference_quench_oil", "oil_temperature_C": 40.0, "turntable_open_fraction": 1.0,
@@ -81,7 +81,7 @@ def test_agitation_shifts_regimes():
 
 def test_turntable_shields_bottom_face():
     pts = ring_section_points(0.2183, 0.301, 0.173, chamfer_m=0.002, spacing_m=5e-3)
-    spec = reference_bath_spec("case_A", 1)
+    spec = case_a_bath_spec("1")
     open_half = boundary_htc(parse_bath(spec), pts)
     spec["turntable_open_fraction"] = 1.0
     open_all = boundary_htc(parse_bath(spec), pts)
@@ -92,7 +92,7 @@ def test_turntable_shields_bottom_face():
 
 def test_jets_reach_their_faces():
     pts = ring_section_points(0.2183, 0.301, 0.173, chamfer_m=0.002, spacing_m=5e-3)
-    htc = boundary_htc(parse_bath(reference_bath_spec("case_A", 1)), pts)
+    htc = boundary_htc(parse_bath(case_a_bath_spec("1")), pts)
     v = {seg: htc.velocity_m_s[htc.segment == seg] for seg in ("bore", "od", "top", "bottom")}
     # OD jets are stronger than ID jets (5.34 vs 1.0 m/s at the exits) and hit the OD near their rows
     assert v["od"].max() > v["bore"].max()

@@ -5,7 +5,7 @@ from hypothesis import given, settings, strategies as st
 
 from quenchsim.bath import boundary_htc, parse_bath
 from quenchsim.bath.outline import ring_section_points
-from quenchsim.bath.reference import reference_bath_spec
+from reference_cases import case_a_bath_spec
 
 POINTS = ring_section_points(0.2183, 0.301, 0.173, chamfer_m=0.002, spacing_m=8e-3)
 speed = st.floats(min_value=0.0, max_value=20000.0, allow_nan=False)
@@ -13,7 +13,7 @@ factor = st.floats(min_value=1.0, max_value=5.0, allow_nan=False)
 
 
 def curves(id_speed, od_speed, rpm=11.0):
-    spec = reference_bath_spec("case_A", 1)
+    spec = case_a_bath_spec("1")
     spec.update(id_jet_speed_mm_s=id_speed, od_jet_speed_mm_s=od_speed, rotation_rpm=rpm, T_step_K=10.0)
     return boundary_htc(parse_bath(spec), POINTS)
 

@@ -37,7 +37,8 @@ The ``[quench.bath]`` table (units as suffixes; condition overrides merged in be
     inclination_deg = 0.0                # > 0 aims the jet downward (-80..80), default 0
     jet_speed_mm_s = 5340.0              # optional: overrides <side>_jet_speed_mm_s for this row
 
-The documented layouts of the two reference rings are in ``quenchsim/bath/reference_nozzles.toml``.
+The documented layouts of the two reference rings are the ``[quench.bath]`` tables of ``cases/crb_outer_ring.toml``
+and ``cases/srb_outer_ring.toml`` (assumptions explained in their comments).
 Errors a user can cause (negative speed, oil at or above its boiling point, unknown quenchant, ...)
 raise :class:`quenchsim.errors.InputError` naming the field.
 
