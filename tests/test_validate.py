@@ -27,6 +27,17 @@ def write(reports_dir):
     raise RuntimeError("model diverged")
 '''
 
+CACHED = '''
+from pathlib import Path
+
+def write(reports_dir: Path) -> list[Path]:
+    page, cache = reports_dir / "cached.md", reports_dir / "cached.json"
+    page.write_text("# Uses a cache\\n")
+    if not cache.is_file():
+        cache.write_text("{}")
+    return [page, cache]
+'''
+
 
 @pytest.fixture()
 def package(tmp_path, monkeypatch):
@@ -36,6 +47,7 @@ def package(tmp_path, monkeypatch):
     (pkg / "good.py").write_text(textwrap.dedent(GOOD))
     (pkg / "bad.py").write_text(textwrap.dedent(BAD))
     (pkg / "nowrite.py").write_text("X = 1\n")
+    (pkg / "cached.py").write_text(textwrap.dedent(CACHED))
     monkeypatch.syspath_prepend(str(tmp_path))
     return "fakereports"
 
@@ -53,6 +65,13 @@ def test_full_run_replaces_the_folder_and_indexes_every_module(tmp_path, package
     index = json.loads((reports / "index.json").read_text())
     assert index[0]["files"] == ["good.md", "good.png"]        # a file written but not returned is listed too
     assert not list(tmp_path.glob(".reports-new-*"))
+
+
+def test_a_returned_file_left_unchanged_is_still_indexed_with_a_relative_reports_dir(tmp_path, package, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    for _ in range(2):  # the second run finds its cache and does not rewrite it
+        results, _ = regenerate("reports", only=["cached"], modules=("cached",), package=package, echo=False)
+        assert results[0].files == ["cached.json", "cached.md"]
 
 
 def test_a_failing_module_leaves_the_committed_folder_untouched(tmp_path, package):

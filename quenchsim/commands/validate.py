@@ -73,9 +73,9 @@ def run_module(name: str, reports_dir: Path, package: str = PACKAGE) -> ModuleRe
     seconds = time.perf_counter() - t0
     after = _snapshot(reports_dir)
     changed = {f for f, m in after.items() if before.get(f) != m}
-    for p in returned:
+    for p in returned:  # as written by the module (absolute, relative to the cwd) or relative to reports_dir
         p = Path(p)
-        p = p if p.is_absolute() else reports_dir / p
+        p = p if p.is_absolute() or p.is_file() else reports_dir / p
         if p.is_file() and p.resolve().is_relative_to(reports_dir.resolve()):
             changed.add(p.resolve().relative_to(reports_dir.resolve()).as_posix())
     return ModuleResult(name, "ok", files=sorted(changed), seconds=seconds)
