@@ -88,8 +88,9 @@ def test_linear_spring_only_for_the_linear_model():
 
 def test_clearance_inputs():
     data = _with(("bearing", "contact_angle_deg"), None)
-    data["bearing"]["radial_clearance_um"] = -2.0
-    with pytest.raises(InputError, match="bearing.radial_clearance_um = -2.0: must be >= 0"):
+    # -50e-6 m * 1e6 is -49.99999999999999 in floating point: the message must show what was typed
+    data["bearing"]["radial_clearance_um"] = -50.0
+    with pytest.raises(InputError, match="bearing.radial_clearance_um = -50.0: must be >= 0"):
         parse_case(data)
     data["bearing"]["radial_clearance_um"] = 500.0     # 2 B D = 100 um for f = 0.52 / 0.53, D = 2 mm
     with pytest.raises(InputError, match="radial_clearance_um"):
