@@ -187,10 +187,11 @@ def _benchmark(reports_dir: pathlib.Path) -> tuple[list[str], list[pathlib.Path]
              "discretisation (fastest of 1.0..1.95 by full solves on levels 3-5, level 6 by omega = 2/(1 + C h)); "
              "the reference's factors (" + ", ".join(f"L{k[0]}/Lambda {k[1]:g}: {v}" for k, v in
                                                      PAPER_SOR_FACTORS.items()) + ") diverge in several cases with "
-             "the point Newton relaxation used here. Runs longer than {BENCH_BUDGET_S:g} s are cut and "
+             f"the point Newton relaxation used here. Runs longer than {BENCH_BUDGET_S:g} s are cut and "
              "completed by extrapolation with the convergence factor per sweep measured over the last 200 sweeps: those "
              "rows are marked **extrapolated** (an optimistic estimate for Gauss-Seidel: its rate keeps slowing as "
-             "smooth error dominates, so the real G-S time and the speed-ups are likely larger) and show the measured sweeps/time too. Numba JIT warm-up (cache load): {jit:.2f} s, "
+             "smooth error dominates, so the real G-S time and the speed-ups are likely larger) and show the "
+             f"measured sweeps/time too. Numba JIT warm-up (cache load): {jit:.2f} s, "
              "excluded from all times. Iterations: multigrid cycles, sweeps, or Newton steps. Machine: 2 cores "
              "shared with other jobs at the time of the run (times are wall clock).", "",
              "| level | nodes | Lambda | method | iterations | work units | wall time s | note |",
