@@ -141,11 +141,17 @@ class QuenchRun:
             raise InputError("geometry.reference_state", reference_state, "must be 'annealed' or 'austenitised'")
         mech_options = {k: v for k, v in case.get("mechanics", {}).items() if k not in ("enabled", "fixed_point_mm")}
         self.case_to_hot = 1.0
-        if case.get("mechanics.enabled", True) and "mechanics" in self.material:
-            self.mech_model = mechanics.load_mechanics(self.material, {**mech_options, "austenitizing_T_C": self.T_aust})
-            # the stress-free start is the austenitised section; the "before" section is the room-temperature
-            # annealed one, smaller by the free strain between the two states. The case file gives one of them.
-            scale = mechanics.austenitized_scale(self.mech_model)
+        if "mechanics" in self.material:
+            solve_stress = bool(case.get("mechanics.enabled", True))
+            # a thermal-only run needs the free strains (for the hot section) but no flow or TRIP data
+            options = mech_options if solve_stress else {"plasticity": False, "trip": False}
+            mech_model = mechanics.load_mechanics(self.material, {**options, "austenitizing_T_C": self.T_aust})
+            if solve_stress:
+                self.mech_model = mech_model
+            # the quench starts from the austenitised section whether or not the stress is solved; the "before"
+            # section is the room-temperature annealed one, smaller by the free strain between the two states.
+            # The case file gives one of them.
+            scale = mechanics.austenitized_scale(mech_model)
             mesh = self.section.mesh
             if reference_state == "annealed":
                 self.case_to_hot = scale
