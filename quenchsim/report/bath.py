@@ -25,6 +25,7 @@ from quenchsim.case import Case, load_case  # noqa: E402
 from quenchsim.errors import SolverError  # noqa: E402
 from quenchsim.geometry.boundary import BoundaryPoints  # noqa: E402
 from quenchsim.geometry.profile import profile_from_case  # noqa: E402
+from quenchsim.report.validation import code_fingerprint  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 CASES = {"A": (ROOT / "cases" / "crb_outer_ring.toml", ("1", "2", "3")),
@@ -298,13 +299,14 @@ def _inputs_hash() -> str:
 
 def case_a_study(reports_dir: Path, mesh_size_mm: float | None = None) -> dict[str, Any]:
     """Case-A centre cooling for conditions 1-3 with the full thermal chain, cached in bath_case_a.json
-    (reused while the resolved case-A inputs and their HTC curves are unchanged: the three runs take many minutes; a change of the
-    thermal chain itself is not detected -- delete the file to force a rerun)."""
+    (reused while the resolved case-A inputs, their HTC curves and the package's code and data -- see
+    :func:`quenchsim.report.validation.code_fingerprint` -- are unchanged)."""
     cache = reports_dir / "bath_case_a.json"
-    key = _inputs_hash()
+    key, fingerprint = _inputs_hash(), code_fingerprint()
     if cache.is_file():
         data = json.loads(cache.read_text())
-        if data.get("inputs_hash") == key and data.get("mesh_size_mm_requested") == mesh_size_mm:
+        if (data.get("inputs_hash") == key and data.get("code_fingerprint") == fingerprint
+                and data.get("mesh_size_mm_requested") == mesh_size_mm):
             return data
     runs = {}
     with tempfile.TemporaryDirectory() as tmp:
@@ -313,7 +315,7 @@ def case_a_study(reports_dir: Path, mesh_size_mm: float | None = None) -> dict[s
     import subprocess
 
     head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
-    data = {"inputs_hash": key, "mesh_size_mm_requested": mesh_size_mm, "git_head": head.stdout.strip(), "runs": runs,
+    data = {"inputs_hash": key, "code_fingerprint": fingerprint, "mesh_size_mm_requested": mesh_size_mm, "git_head": head.stdout.strip(), "runs": runs,
             "relative_to_condition_1": relative_to_condition_1(runs)}
     cache.write_text(json.dumps(data, indent=2))
     return data
@@ -438,7 +440,7 @@ def write(reports_dir: Path) -> list[Path]:
     rel = study["relative_to_condition_1"]
     md += ["## Case A: section centre P1 relative to condition 1 (full thermal chain, mechanics off)", "",
            "`quenchsim.simulation.run_case` on the case file's mesh with the bath model; time from the austenitising "
-           "temperature to 500 C at P1 (cached in `bath_case_a.json`, rerun when case A or its HTC curves change; "
+           "temperature to 500 C at P1 (cached in `bath_case_a.json`, rerun when case A, its HTC curves or the code change; "
            f"inputs hash {study['inputs_hash']}, repository at {study.get('git_head', '?')} when run).", "",
            "| condition | t to 500 C (s) | time ratio | rate ratio | report | within |", "|---|---|---|---|---|---|"]
     for cond, e in rel.items():
