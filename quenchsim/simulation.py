@@ -36,6 +36,8 @@ from quenchsim.results import NodalProjection, depth_below, phase_statistics, ti
 from quenchsim.thermal import AxisymmetricP2, ThermalSolver, parse_htc_table
 
 log = logging.getLogger("quenchsim")
+# simulated seconds with one decimal (the float step sum would print as 46.931000000000004/900.0)
+PROGRESS_FORMAT = "{l_bar}{bar}| {n:.1f}/{total:.0f} s simulated [{elapsed}<{remaining}]"
 INTORDER = 4
 HRC_THRESHOLD = 58.0
 
@@ -228,7 +230,7 @@ class QuenchRun:
                 t_end = self.thermal.time_s + duration
                 until = case.number("air.until_max_C") if stage == "air" else -math.inf
                 bar = tqdm(total=round(duration, 3), desc=f"{case.name}[{case.condition}] {stage}", unit="s",
-                           disable=not self.progress, leave=False)
+                           bar_format=PROGRESS_FORMAT, disable=not self.progress, leave=False)
                 while self.thermal.time_s < t_end - 1e-9 and float(np.max(self.thermal.T)) > until:
                     dt = min(dt, t_end - self.thermal.time_s)
                     try:
