@@ -315,8 +315,8 @@ def case_a_study(reports_dir: Path, mesh_size_mm: float | None = None) -> dict[s
     import subprocess
 
     head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
-    data = {"inputs_hash": key, "code_fingerprint": fingerprint, "mesh_size_mm_requested": mesh_size_mm, "git_head": head.stdout.strip(), "runs": runs,
-            "relative_to_condition_1": relative_to_condition_1(runs)}
+    data = {"inputs_hash": key, "code_fingerprint": fingerprint, "mesh_size_mm_requested": mesh_size_mm,
+            "git_head": head.stdout.strip(), "runs": runs, "relative_to_condition_1": relative_to_condition_1(runs)}
     cache.write_text(json.dumps(data, indent=2))
     return data
 
@@ -440,7 +440,8 @@ def write(reports_dir: Path) -> list[Path]:
     rel = study["relative_to_condition_1"]
     md += ["## Case A: section centre P1 relative to condition 1 (full thermal chain, mechanics off)", "",
            "`quenchsim.simulation.run_case` on the case file's mesh with the bath model; time from the austenitising "
-           "temperature to 500 C at P1 (cached in `bath_case_a.json`, rerun when case A, its HTC curves or the code change; "
+           "temperature to 500 C at P1 (cached in `bath_case_a.json`, rerun when case A, its HTC curves or the code "
+           "change; "
            f"inputs hash {study['inputs_hash']}, repository at {study.get('git_head', '?')} when run).", "",
            "| condition | t to 500 C (s) | time ratio | rate ratio | report | within |", "|---|---|---|---|---|---|"]
     for cond, e in rel.items():

@@ -78,13 +78,15 @@ def _grid_convergence(reports_dir: pathlib.Path) -> tuple[list[str], list[pathli
     lines = ["## 2. Grid convergence and depth-0 grooves", "",
              "| case | level | nodes | F | attitude deg |", "|---|---|---|---|---|"]
     series = {}
-    cases = {"plain, Lambda 3, eps 0.6": (Bearing(), 3.0),
-             "5 grooves (efficiency case), Lambda 10, eps 0.5": (EFFICIENCY_CASE, 10.0)}
+    plain_case = "plain, Lambda 3, eps 0.6"
+    cases = {plain_case: (Bearing(), 3.0), "5 grooves (efficiency case), Lambda 10, eps 0.5": (EFFICIENCY_CASE, 10.0)}
+    solutions = {}
     for label, (bearing, lam) in cases.items():
         levels = list(range(2, 8))
         loads = []
         for level in levels:
             r = static_characteristics(bearing, lam, 0.6 if bearing.grooves is None else 0.5, level=level)
+            solutions[label, level] = r
             loads.append(r.load)
             lines.append(f"| {label} | {level} | {r.grid.nodes} | {r.load:.5f} | {r.attitude_deg:.3f} |")
         diffs = np.abs(np.diff(loads))
@@ -96,8 +98,9 @@ def _grid_convergence(reports_dir: pathlib.Path) -> tuple[list[str], list[pathli
     fig = plots.convergence(series, "nodes", "|F(level m) - F(level m-1)|", "grid convergence of the load",
                             _fig("grid_convergence", reports_dir))
     skew0 = Bearing(1.0, Grooves(20, 30.0, 0.0, 0.5, 0.5))
+    depth0 = {level: static_characteristics(skew0, 3.0, 0.6, level=level) for level in range(3, 8)}
     same = static_characteristics(Bearing(1.0, Grooves(5, 30.0, 0.0, 0.3, 0.7, "rotor")), 3.0, 0.6, level=5)
-    skewed = static_characteristics(skew0, 3.0, 0.6, level=5)
+    skewed = depth0[5]
     lines += ["", f"![grid convergence]({fig.name})", "",
               "Depth-0 grooves (Lambda 3, eps 0.6): any groove count/ratios/member with depth 0 give the "
               f"identical discrete problem -- max |P difference| between two depth-0 patterns on the same 30-deg "
@@ -106,9 +109,8 @@ def _grid_convergence(reports_dir: pathlib.Path) -> tuple[list[str], list[pathli
               "under refinement:", "",
               "| level | F depth 0 (30-deg grid) | F plain | load difference % | attitude difference deg |",
               "|---|---|---|---|---|"]
-    for level in range(3, 8):
-        plain = static_characteristics(Bearing(), 3.0, 0.6, level=level)
-        zero = static_characteristics(skew0, 3.0, 0.6, level=level)
+    for level, zero in depth0.items():
+        plain = solutions[plain_case, level]
         lines.append(f"| {level} | {zero.load:.5f} | {plain.load:.5f} | {100 * (zero.load / plain.load - 1):+.4f} | "
                      f"{zero.attitude_deg - plain.attitude_deg:+.4f} |")
     lines.append("")

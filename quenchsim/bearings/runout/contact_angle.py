@@ -31,11 +31,12 @@ def free_contact_angle_rad(radial_clearance_m: float, ball_diameter_m: float,
     B = inner_groove_radius_ratio + outer_groove_radius_ratio - 1.0
     require(B > 0.0, "bearing.inner_groove_radius_ratio + outer_groove_radius_ratio", B + 1.0,
             "must exceed 1 (each groove radius must exceed the ball radius)")
-    require(radial_clearance_m >= 0.0, "bearing.radial_clearance_um", float(f"{radial_clearance_m * 1e6:.12g}"),
+    clearance_um = float(f"{radial_clearance_m * 1e6:.12g}")  # as typed, without the um -> m -> um round-off
+    require(radial_clearance_m >= 0.0, "bearing.radial_clearance_um", clearance_um,
             "must be >= 0: the fixed-contact-angle models need a free contact angle "
             "acos(1 - P_d/(2 B D)), which a negative clearance (interference) does not have")
     c = 1.0 - radial_clearance_m / (2.0 * B * ball_diameter_m)
-    require(c > 0.0, "bearing.radial_clearance_um", float(f"{radial_clearance_m * 1e6:.12g}"),
+    require(c > 0.0, "bearing.radial_clearance_um", clearance_um,
             f"must be < 2 B D = {2e6 * B * ball_diameter_m:.4g} um (free contact angle would reach 90 deg)")
     return math.acos(c)
 
