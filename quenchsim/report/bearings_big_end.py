@@ -7,6 +7,7 @@ Table 3, validation-rig cage orbits (Table 1), cost per revolution.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import pathlib
 import platform
@@ -21,6 +22,7 @@ from scipy.integrate import solve_ivp  # noqa: E402
 from quenchsim.bearings.big_end import load_case, plot_run, run_statistics, simulate  # noqa: E402
 from quenchsim.bearings.big_end.benchmark import integrator_benchmark  # noqa: E402
 from quenchsim.bearings.big_end.journal import short_bearing_force  # noqa: E402
+from quenchsim.bearings.big_end.lubricant import load_oil  # noqa: E402
 from quenchsim.bearings.big_end.output import cage_orbit_um  # noqa: E402
 from quenchsim.bearings.big_end.simulate import (DEFAULT_INTEGRATOR, RTOL, RunResult, build_params,  # noqa: E402
                                                  initial_state, rhs_function, slip_histories, solver_options,
@@ -49,6 +51,11 @@ SENSITIVITY = (("engine: pocket friction 0 (case file 0.05)", "engine", {"mu_poc
                ("engine: solid cage-land friction 0.05 (case file 0: film-only guidance as in the reference)",
                 "engine", {"mu_guide": 0.05}),
                ("static: no cage-land film (lands 0: no film force, no Couette drag)", "static", {"lands": 0.0}))
+# Traction study: the limiting film traction over the published range of mineral oils (0.03-0.08, Evans & Johnson
+# 1986; the oil file holds 0.04) for every clearance set, and the reference set with one clearance at a time moved to
+# the values of sets 1 and 3.
+TRACTION_VALUES = (0.03, 0.04, 0.06, 0.08)
+CLEARANCE_KINDS = (("guide", "guide"), ("pocket", "pocket"), ("radial internal", "radial"))
 
 
 def _ratio_stats(s: dict) -> dict[str, float]:
@@ -390,6 +397,55 @@ def _diagnosis_section(case, engine: RunResult, static: RunResult, reports_dir: 
     return lines
 
 
+def _traction_clearance_section(case) -> list[str]:
+    """Roller spin slip against the film traction (every clearance set) and against each clearance alone."""
+    revs = DIAGNOSIS_REVOLUTIONS
+    sets = range(1, len(case.clearance_sets) + 1)
+    spin = {(mu, k): run_statistics(simulate(case, k, "engine", revolutions=revs, overrides={"mu_lim": mu}))
+            ["roller_spin_slip_mean_abs_pct"] for mu in TRACTION_VALUES for k in sets}
+    ref = case.clearance_sets[REFERENCE_SET - 1]
+    lines = [f"### Roller spin slip against film traction and against each clearance ({revs} crank revolutions "
+             "each, the first excluded)", "",
+             "Limiting film traction mu_lim over the range published for mineral oils (0.03-0.08; the oil file: "
+             f"{_case_oil_mu(case):g}), every clearance set:", "",
+             "| mu_lim | " + " | ".join(f"set {k} spin slip [%]" for k in sets) + " | largest / smallest set |",
+             "|---|" + "---|" * (len(sets) + 1)]
+    for mu in TRACTION_VALUES:
+        vals = [spin[(mu, k)] for k in sets]
+        lines.append(f"| {mu:g} | " + " | ".join(_fmt(v) for v in vals) + f" | {max(vals) / min(vals):.2f} |")
+    lines += ["", f"Set {REFERENCE_SET} with one clearance at a time set to the value of set 1 / set 3 "
+              f"(mu_lim {_case_oil_mu(case):g}):", "",
+              "| clearance moved | values [mm] | spin slip [%] | orbital slip [%] | cage slip mean abs [%] |",
+              "|---|---|---|---|---|"]
+    for label, field in CLEARANCE_KINDS:
+        stats, values = [], []
+        for k in (1, len(case.clearance_sets)):
+            moved = dataclasses.replace(ref, **{field: getattr(case.clearance_sets[k - 1], field)})
+            one = dataclasses.replace(case, clearance_sets=(moved,))
+            stats.append(run_statistics(simulate(one, 1, "engine", revolutions=revs)))
+            values.append(getattr(moved, field) * 1e3)
+        lines.append(f"| {label} | {values[0]:.3f} / {values[1]:.3f} | "
+                     + " | ".join(" / ".join(_fmt(f(st)) for st in stats) for f in (
+                         lambda st: st["roller_spin_slip_mean_abs_pct"],
+                         lambda st: st["roller_orbital_slip_mean_abs_pct"],
+                         lambda st: st["cage_slip_pct"]["mean_abs"])) + " |")
+    ref_spin = [spin[(mu, REFERENCE_SET)] for mu in TRACTION_VALUES]
+    brackets = min(ref_spin) <= PAPER["spin"] <= max(ref_spin)
+    spread = [max(spin[(mu, k)] for k in sets) / min(spin[(mu, k)] for k in sets) for mu in TRACTION_VALUES]
+    lines += ["", f"Spin slip of set {REFERENCE_SET} goes from {_fmt(ref_spin[0])} % at mu_lim {TRACTION_VALUES[0]:g} "
+              f"to {_fmt(ref_spin[-1])} % at {TRACTION_VALUES[-1]:g} (paper ~{PAPER['spin']:g} %): over the published "
+              "traction range the model " + ("brackets" if brackets else "does not reach") + " the paper's value; "
+              "the traction of the paper's unnamed oil is not given. The largest / smallest set ratio is "
+              f"{min(spread):.2f}-{max(spread):.2f} over the traction range; the second table shows which clearance "
+              "carries it.", ""]
+    return lines
+
+
+def _case_oil_mu(case) -> float:
+    """Limiting film traction of the case's oil (the value the runs use without overrides)."""
+    return load_oil(case.lubrication.oil, case.lubrication.temperature_C).limiting_traction_coefficient
+
+
 def _separation(engine: RunResult, static: RunResult, key: str) -> float | None:
     """(engine - static) / standard error of that difference, from the per-revolution means of the
     statistic ``key`` of :data:`PAPER_RATIO` (None for the maximum)."""
@@ -559,6 +615,7 @@ def write(reports_dir: pathlib.Path) -> list[pathlib.Path]:
         "",
     ]
     lines += _diagnosis_section(case, engine[REFERENCE_SET], static, reports_dir, written)
+    lines += _traction_clearance_section(case)
     lines += [
         "## Validation rig (Table 1): cage-centre orbits",
         "",

@@ -135,10 +135,10 @@ def write(reports_dir: Path, runs_dir: Path = RUNS) -> list[Path]:
     md += ["## Case A: cylindrical-roller-bearing outer ring (SUJ3), conditions 1-3", "",
            "### Cooling at the section centre relative to condition 1 (`relative_to_condition_1`)", "",
            "| quantity | computed | reported | within |", "|---|---|---|---|",
-           f"| condition 2: time to 500 C at P1 / condition 1's | {rel['condition_2_t_to_500C_ratio']:.3f} | "
+           f"| condition 2: time to 500 C at P1 / condition 1's | {rel['condition_2_t_to_500C_ratio']:.4f} | "
            f"{REPORTED_T500_RATIO_COND2[0]} +- {REPORTED_T500_RATIO_COND2[1]} | "
            f"{'yes' if abs(rel['condition_2_t_to_500C_ratio'] - REPORTED_T500_RATIO_COND2[0]) <= REPORTED_T500_RATIO_COND2[1] else 'NO'} |",
-           f"| condition 3: cooling rate to 500 C at P1 / condition 1's | {rel['condition_3_rate_to_500C_ratio']:.3f} | "
+           f"| condition 3: cooling rate to 500 C at P1 / condition 1's | {rel['condition_3_rate_to_500C_ratio']:.4f} | "
            f"{REPORTED_RATE_RATIO_COND3[0]} +- {REPORTED_RATE_RATIO_COND3[1]} | "
            f"{'yes' if abs(rel['condition_3_rate_to_500C_ratio'] - REPORTED_RATE_RATIO_COND3[0]) <= REPORTED_RATE_RATIO_COND3[1] else 'NO'} |",
            "", "| condition | " + " | ".join(f"P{i} t(500 C) s" for i in range(1, 6)) + " | HRC58 depth bore / OD mm | core HRC |",
