@@ -1,6 +1,7 @@
 """Bath-model page ``reports/bath.md`` (+ PNGs): HTC(T) per segment and local velocities for conditions 1-6,
 the ISO 9950 probe against published mineral-oil data, the case-A centre cooling relative to condition 1
-(full thermal solver), and the cost of the bath model.
+(full thermal solver) and its sensitivity to the process inputs the report does not print, and the cost of the
+bath model.
 """
 
 from __future__ import annotations

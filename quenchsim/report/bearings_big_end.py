@@ -22,7 +22,6 @@ from scipy.integrate import solve_ivp  # noqa: E402
 from quenchsim.bearings.big_end import load_case, plot_run, run_statistics, simulate  # noqa: E402
 from quenchsim.bearings.big_end.benchmark import integrator_benchmark  # noqa: E402
 from quenchsim.bearings.big_end.journal import short_bearing_force  # noqa: E402
-from quenchsim.bearings.big_end.lubricant import load_oil  # noqa: E402
 from quenchsim.bearings.big_end.output import cage_orbit_um  # noqa: E402
 from quenchsim.bearings.big_end.simulate import (DEFAULT_INTEGRATOR, RTOL, RunResult, build_params,  # noqa: E402
                                                  initial_state, rhs_function, slip_histories, solver_options,
@@ -56,6 +55,18 @@ SENSITIVITY = (("engine: pocket friction 0 (case file 0.05)", "engine", {"mu_poc
 # the values of sets 1 and 3.
 TRACTION_VALUES = (0.03, 0.04, 0.06, 0.08)
 CLEARANCE_KINDS = (("guide", "guide"), ("pocket", "pocket"), ("radial internal", "radial"))
+
+
+def _short_run(case, memo: dict, set_number: int, mode: str, overrides: dict[str, float] | None = None) -> dict:
+    """Statistics of a DIAGNOSIS_REVOLUTIONS run, computed once per distinct model (``memo``: shared by the
+    report's sections; an override equal to the case's own value is the unchanged model)."""
+    p, _, _ = build_params(case, set_number, mode)
+    changed = tuple(sorted((k, v) for k, v in (overrides or {}).items() if getattr(p, k) != v))
+    key = (set_number, mode, changed)
+    if key not in memo:
+        memo[key] = run_statistics(simulate(case, set_number, mode, revolutions=DIAGNOSIS_REVOLUTIONS,
+                                            overrides=dict(changed)))
+    return memo[key]
 
 
 def _ratio_stats(s: dict) -> dict[str, float]:
@@ -258,7 +269,7 @@ def _per_revolution(result: RunResult, values: np.ndarray) -> np.ndarray:
 
 
 def _diagnosis_section(case, engine: RunResult, static: RunResult, reports_dir: pathlib.Path,
-                       written: list[pathlib.Path]) -> list[str]:
+                       written: list[pathlib.Path], memo: dict) -> list[str]:
     """Measurements behind the roller spin slip (paper ~15 %) and the cage slip of engine vs static:
     slip definitions and averaging, static-mode checks, contact states, land state and one-parameter
     sensitivity runs. Appends its figure to ``written``."""
@@ -266,10 +277,8 @@ def _diagnosis_section(case, engine: RunResult, static: RunResult, reports_dir: 
     z_cage = _separation(engine, static, "cage slip mean abs")
     eng_def, sta_def = _definition_variants(engine), _definition_variants(static)
     steps = {mode: _step_sampled(case, mode, DIAGNOSIS_REVOLUTIONS) for mode in ("engine", "static")}
-    base = {mode: run_statistics(simulate(case, REFERENCE_SET, mode, revolutions=DIAGNOSIS_REVOLUTIONS))
-            for mode in ("engine", "static")}
-    sens = [(label, mode, run_statistics(simulate(case, REFERENCE_SET, mode, revolutions=DIAGNOSIS_REVOLUTIONS,
-                                                  overrides=over))) for label, mode, over in SENSITIVITY]
+    base = {mode: _short_run(case, memo, REFERENCE_SET, mode) for mode in ("engine", "static")}
+    sens = [(label, mode, _short_run(case, memo, REFERENCE_SET, mode, over)) for label, mode, over in SENSITIVITY]
     written.append(_plot_spin_by_angle(engine, reports_dir / "bearing_big_end_spin_by_angle.png"))
     land_e, land_s = _cage_land_state(engine), _cage_land_state(static)
     per_rev_e = _per_revolution(engine, engine.cage_slip_pct)
@@ -397,24 +406,25 @@ def _diagnosis_section(case, engine: RunResult, static: RunResult, reports_dir: 
     return lines
 
 
-def _traction_clearance_section(case) -> list[str]:
-    """Roller spin slip against the film traction (every clearance set) and against each clearance alone."""
+def _traction_clearance_section(case, mu_case: float, memo: dict) -> list[str]:
+    """Roller spin slip against the film traction (every clearance set) and against each clearance alone
+    (``mu_case``: the traction of the case's oil)."""
     revs = DIAGNOSIS_REVOLUTIONS
     sets = range(1, len(case.clearance_sets) + 1)
-    spin = {(mu, k): run_statistics(simulate(case, k, "engine", revolutions=revs, overrides={"mu_lim": mu}))
-            ["roller_spin_slip_mean_abs_pct"] for mu in TRACTION_VALUES for k in sets}
+    spin = {(mu, k): _short_run(case, memo, k, "engine", {"mu_lim": mu})["roller_spin_slip_mean_abs_pct"]
+            for mu in TRACTION_VALUES for k in sets}
     ref = case.clearance_sets[REFERENCE_SET - 1]
     lines = [f"### Roller spin slip against film traction and against each clearance ({revs} crank revolutions "
              "each, the first excluded)", "",
              "Limiting film traction mu_lim over the range published for mineral oils (0.03-0.08; the oil file: "
-             f"{_case_oil_mu(case):g}), every clearance set:", "",
+             f"{mu_case:g}), every clearance set:", "",
              "| mu_lim | " + " | ".join(f"set {k} spin slip [%]" for k in sets) + " | largest / smallest set |",
              "|---|" + "---|" * (len(sets) + 1)]
     for mu in TRACTION_VALUES:
         vals = [spin[(mu, k)] for k in sets]
         lines.append(f"| {mu:g} | " + " | ".join(_fmt(v) for v in vals) + f" | {max(vals) / min(vals):.2f} |")
     lines += ["", f"Set {REFERENCE_SET} with one clearance at a time set to the value of set 1 / set 3 "
-              f"(mu_lim {_case_oil_mu(case):g}):", "",
+              f"(mu_lim {mu_case:g}):", "",
               "| clearance moved | values [mm] | spin slip [%] | orbital slip [%] | cage slip mean abs [%] |",
               "|---|---|---|---|---|"]
     for label, field in CLEARANCE_KINDS:
@@ -439,11 +449,6 @@ def _traction_clearance_section(case) -> list[str]:
               f"{min(spread):.2f}-{max(spread):.2f} over the traction range; the second table shows which clearance "
               "carries it.", ""]
     return lines
-
-
-def _case_oil_mu(case) -> float:
-    """Limiting film traction of the case's oil (the value the runs use without overrides)."""
-    return load_oil(case.lubrication.oil, case.lubrication.temperature_C).limiting_traction_coefficient
 
 
 def _separation(engine: RunResult, static: RunResult, key: str) -> float | None:
@@ -614,8 +619,9 @@ def write(reports_dir: pathlib.Path) -> list[pathlib.Path]:
         "![clearance study](bearing_big_end_clearance_study.png)",
         "",
     ]
-    lines += _diagnosis_section(case, engine[REFERENCE_SET], static, reports_dir, written)
-    lines += _traction_clearance_section(case)
+    short_runs: dict = {}
+    lines += _diagnosis_section(case, engine[REFERENCE_SET], static, reports_dir, written, short_runs)
+    lines += _traction_clearance_section(case, engine[REFERENCE_SET].params.mu_lim, short_runs)
     lines += [
         "## Validation rig (Table 1): cage-centre orbits",
         "",

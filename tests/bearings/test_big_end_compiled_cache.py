@@ -36,7 +36,7 @@ np.save(out_path, np.concatenate(evaluate(float(t), np.array(y), p)))
 
 def test_compiled_right_hand_side_matches_the_python_source(tmp_path):
     p, _, _ = build_params(load_case(CASE), 2, "engine")
-    # a state inside a loaded engine revolution: race, pocket and land contacts all engaged
+    # a state inside a loaded engine revolution (not the contact-free start)
     t, y, _, _ = integrate(p, 0.3, 40)
     t_k, y_k = float(t[-1]), y[:, -1]
     compiled = np.concatenate(evaluate(t_k, y_k, p))
