@@ -38,7 +38,7 @@ from quenchsim.thermal import AxisymmetricP2, ThermalSolver, parse_htc_table
 log = logging.getLogger("quenchsim")
 # simulated seconds with one decimal (the float step sum would print as 46.931000000000004/900.0)
 PROGRESS_FORMAT = "{l_bar}{bar}| {n:.1f}/{total:.0f} s simulated [{elapsed}<{remaining}]"
-INTORDER = 4
+from quenchsim.fem import INTORDER  # noqa: E402 (re-export for callers of the old location)
 HRC_THRESHOLD = 58.0
 
 

@@ -12,10 +12,8 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import Basis, ElementTriP2, ElementVector, MeshTri
 
+from quenchsim.fem import INTORDER, FixedPatternAssembler, r_weights
 from quenchsim.mechanics.constitutive import M_VEC, SQRT2, PointUpdate
-
-INTORDER = 4
-"""Quadrature order shared with the thermal/metallurgy basis ``Basis(mesh, ElementTriP2(), intorder=4)``."""
 
 
 class AxisymmetricAssembler:
@@ -26,8 +24,7 @@ class AxisymmetricAssembler:
         self.basis = Basis(mesh, ElementVector(ElementTriP2()), intorder=intorder)
         self.n_dofs = self.basis.N
         self.element_dofs = self.basis.element_dofs.T.copy()  # (ne, 12)
-        self.radius = np.asarray(self.basis.global_coordinates())[0]  # (ne, nq)
-        self.weights = self.radius * self.basis.dx  # r dA per quadrature point
+        self.radius, self.weights = r_weights(self.basis)  # (ne, nq): r and r dA per quadrature point
         n_local = self.element_dofs.shape[1]
         ne, nq = self.radius.shape
         B = np.empty((ne, nq, 4, n_local))
@@ -47,15 +44,7 @@ class AxisymmetricAssembler:
         self.kernel = np.concatenate([(B_vol[:, :, :, None] * B_vol[:, :, None, :]).reshape(ne, nq, -1),
                                       np.einsum("eqai,eqaj->eqij", B_dev, B_dev, optimize=True).reshape(ne, nq, -1)],
                                      axis=1)
-        rows = np.repeat(self.element_dofs[:, :, None], n_local, axis=2)
-        cols = np.repeat(self.element_dofs[:, None, :], n_local, axis=1)
-        keys = (rows.astype(np.int64) * self.n_dofs + cols).ravel()
-        unique, self._scatter = np.unique(keys, return_inverse=True)
-        self._indices = (unique % self.n_dofs).astype(np.int32)
-        row_of = unique // self.n_dofs
-        self._indptr = np.concatenate([[0], np.cumsum(np.bincount(row_of, minlength=self.n_dofs))]).astype(np.int32)
-        self._row_of = row_of
-        self.nnz = unique.size
+        self.pattern = FixedPatternAssembler(self.basis.element_dofs, self.n_dofs)
 
     def strain(self, u: np.ndarray) -> np.ndarray:
         """Mandel strain (ne, nq, 4) of the displacement vector u."""
@@ -82,13 +71,4 @@ class AxisymmetricAssembler:
             # over all elements: cheaper than gathering the plastic ones (most are plastic during a quench)
             Bn = np.matmul(update.normal[:, :, None, :], self.B)[:, :, 0, :]  # n^T B, (ne, nq, 12)
             Ke += np.matmul(Bn.transpose(0, 2, 1) * soft_weight[:, None, :], Bn)
-        data = np.bincount(self._scatter, weights=Ke.ravel(), minlength=self.nnz)
-        return sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n_dofs, self.n_dofs))
-
-    def constrained_pattern(self, fixed_dofs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Positions in the CSR data of entries in fixed rows/columns, and of their diagonals."""
-        fixed = np.zeros(self.n_dofs, dtype=bool)
-        fixed[fixed_dofs] = True
-        touched = fixed[self._row_of] | fixed[self._indices]
-        diagonal = touched & (self._row_of == self._indices) & fixed[self._row_of]
-        return np.flatnonzero(touched), np.flatnonzero(diagonal)
+        return self.pattern.matrix(Ke)

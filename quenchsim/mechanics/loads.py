@@ -6,7 +6,7 @@ import numpy as np
 from skfem import ElementTriP2, ElementVector, FacetBasis, LinearForm, MeshTri
 from skfem.helpers import dot
 
-from quenchsim.mechanics.assembly import INTORDER
+from quenchsim.fem import INTORDER
 
 
 def surface_load(mesh: MeshTri, facets: np.ndarray, pressure_Pa: float = 0.0,

@@ -23,10 +23,11 @@ import scipy.sparse.linalg as spla
 from skfem import Basis, ElementTriP1, ElementTriP2, MeshTri
 
 from quenchsim.errors import InputError
-from quenchsim.linalg import norm as _norm
-from quenchsim.linalg import pcg, symmetric_lu
+from quenchsim.fem import INTORDER
+from quenchsim.fem.linalg import norm as _norm
+from quenchsim.fem.linalg import pcg, symmetric_lu
 from quenchsim.materials import PHASES
-from quenchsim.mechanics.assembly import INTORDER, AxisymmetricAssembler
+from quenchsim.mechanics.assembly import AxisymmetricAssembler
 from quenchsim.mechanics.constitutive import M_VEC, SQRT2, PointUpdate, lame_bulk_shear, return_map, von_mises
 from quenchsim.mechanics.model import MechanicsModel, free_strain, free_strain_increment, trip_saturation
 
@@ -112,7 +113,7 @@ class MechanicsSolver:
         self._started = False
         self.displacement_m = np.zeros(self.asm.n_dofs)
         self.fixed_dofs = self._constraints(fixed_point, dirichlet or {})
-        self._zero_pos, self._diag_pos = self.asm.constrained_pattern(self.fixed_dofs)
+        self._zero_pos, self._diag_pos = self.asm.pattern.constrained_pattern(self.fixed_dofs)
         self._projector = self._vertex_projector()
         self.linear_solver = _LinearSolver()
         self._last_increment: np.ndarray | None = None

@@ -11,9 +11,9 @@ API (used by :mod:`quenchsim.simulation` and by studies such as the ISO 9950 pro
 :class:`TableHTC` builds it from case-file tables, the bath model from nozzles and boiling.
 """
 
-from quenchsim.thermal.assembly import AxisymmetricP2, FixedPatternAssembler
+from quenchsim.thermal.assembly import AxisymmetricP2
 from quenchsim.thermal.boundary import TableHTC, parse_htc_table
 from quenchsim.thermal.solver import NoTransformation, PhaseModel, ThermalSolver, ThermalStep
 
-__all__ = ["AxisymmetricP2", "FixedPatternAssembler", "TableHTC", "parse_htc_table", "NoTransformation",
+__all__ = ["AxisymmetricP2", "TableHTC", "parse_htc_table", "NoTransformation",
            "PhaseModel", "ThermalSolver", "ThermalStep"]

@@ -19,38 +19,13 @@ import numpy as np
 import scipy.sparse as sp
 import skfem
 
-
-class FixedPatternAssembler:
-    """Sums element matrices (n_cells, n_loc, n_loc) into a CSR matrix with a precomputed pattern."""
-
-    def __init__(self, cell_dofs: np.ndarray, n_dofs: int) -> None:
-        n_loc, n_cells = cell_dofs.shape
-        rows = np.broadcast_to(cell_dofs.T[:, :, None], (n_cells, n_loc, n_loc)).ravel()
-        cols = np.broadcast_to(cell_dofs.T[:, None, :], (n_cells, n_loc, n_loc)).ravel()
-        keys = rows.astype(np.int64) * n_dofs + cols
-        unique, self._scatter = np.unique(keys, return_inverse=True)
-        self._indices = (unique % n_dofs).astype(np.int32)
-        self._indptr = np.searchsorted(unique // n_dofs, np.arange(n_dofs + 1)).astype(np.int32)
-        self.n_dofs = n_dofs
-        self.cell_dofs = cell_dofs
-
-    def _indptr_rows(self) -> np.ndarray:
-        """Row index of every stored entry (CSR order)."""
-        return np.repeat(np.arange(self.n_dofs), np.diff(self._indptr))
-
-    def matrix(self, cell_matrices: np.ndarray) -> sp.csr_matrix:
-        data = np.bincount(self._scatter, weights=cell_matrices.ravel(), minlength=self._indices.size)
-        return sp.csr_matrix((data, self._indices, self._indptr), shape=(self.n_dofs, self.n_dofs))
-
-    def vector(self, cell_vectors: np.ndarray) -> np.ndarray:
-        """Sum (n_cells, n_loc) local vectors into a global vector."""
-        return np.bincount(self.cell_dofs.T.ravel(), weights=cell_vectors.ravel(), minlength=self.n_dofs)
+from quenchsim.fem import INTORDER, FixedPatternAssembler, r_weights
 
 
 class AxisymmetricP2:
     """Element data of r-weighted P2 conduction on a triangle mesh (metres, x = r, y = z)."""
 
-    def __init__(self, mesh: skfem.MeshTri, robin_facets: np.ndarray, intorder: int = 4) -> None:
+    def __init__(self, mesh: skfem.MeshTri, robin_facets: np.ndarray, intorder: int = INTORDER) -> None:
         element = skfem.ElementTriP2()
         self.mesh = mesh
         self.basis = skfem.Basis(mesh, element, intorder=intorder)
@@ -58,9 +33,8 @@ class AxisymmetricP2:
         self.n_dofs = b.N
         self.phi = np.stack([np.asarray(b.basis[i][0]) for i in range(b.Nbfun)])          # (nloc, ne, nq)
         grad = np.stack([np.asarray(b.basis[i][0].grad) for i in range(b.Nbfun)])               # (nloc, 2, ne, nq)
-        self.r_qp = np.asarray(b.global_coordinates())[0]                                 # (ne, nq)
+        self.r_qp, self.r_dx = r_weights(b)                                         # (ne, nq): r, r dA
         self.z_qp = np.asarray(b.global_coordinates())[1]
-        self.r_dx = self.r_qp * b.dx                                                # r dA weights
         self.mass_kernel = np.einsum("ieq,jeq,eq->eqij", self.phi, self.phi, self.r_dx, optimize=True)
         self.stiffness_kernel = np.einsum("ideq,jdeq,eq->eqij", grad, grad, self.r_dx, optimize=True)
         self.assembler = FixedPatternAssembler(b.element_dofs, b.N)
@@ -69,10 +43,9 @@ class AxisymmetricP2:
         fb = skfem.FacetBasis(mesh, element, facets=self.facets, intorder=intorder)
         self.facet_basis = fb
         self.fphi = np.stack([np.asarray(fb.basis[i][0]) for i in range(fb.Nbfun)])       # (nloc, nf, nqf)
-        xf = np.asarray(fb.global_coordinates())
-        self.facet_r, self.facet_z = xf[0], xf[1]                                   # (nf, nqf)
+        self.facet_r, self.facet_r_ds = r_weights(fb)                               # (nf, nqf): r, r ds
+        self.facet_z = np.asarray(fb.global_coordinates())[1]
         self.facet_normals = fb.normals                                             # (2, nf, nqf)
-        self.facet_r_ds = self.facet_r * fb.dx
         self.robin_kernel = np.einsum("ifq,jfq,fq->fqij", self.fphi, self.fphi, self.facet_r_ds, optimize=True)
         self.facet_assembler = FixedPatternAssembler(fb.element_dofs, b.N)
         # one-pass system assembly: [mass | stiffness] kernels side by side along the quadrature axis,
@@ -80,11 +53,9 @@ class AxisymmetricP2:
         ne, nq, nloc = self.r_dx.shape + (b.Nbfun,)
         self._volume_kernel = np.concatenate([self.mass_kernel, self.stiffness_kernel], axis=1).reshape(ne, 2 * nq, -1)
         cell = self.assembler
-        pattern_keys = cell._indptr_rows().astype(np.int64) * b.N + cell._indices
         facet = self.facet_assembler
-        facet_keys = facet._indptr_rows().astype(np.int64) * b.N + facet._indices
-        robin_pos = np.searchsorted(pattern_keys, facet_keys)
-        self._system_scatter = np.concatenate([cell._scatter, robin_pos[facet._scatter]])
+        robin_pos = np.searchsorted(cell.keys(), facet.keys())
+        self._system_scatter = np.concatenate([cell.scatter, robin_pos[facet.scatter]])
         self._robin_kernel = self.robin_kernel.reshape(self.robin_kernel.shape[0], self.robin_kernel.shape[1], -1)
 
     # -- fields at quadrature points ------------------------------------------------------------
@@ -107,9 +78,8 @@ class AxisymmetricP2:
         volume = np.einsum("eq,eqk->ek", np.concatenate([mass_coefficient, conductivity], axis=1), self._volume_kernel)
         facet = np.einsum("fq,fqk->fk", robin_coefficient, self._robin_kernel)
         cell = self.assembler
-        data = np.bincount(self._system_scatter, weights=np.concatenate([volume.ravel(), facet.ravel()]),
-                           minlength=cell._indices.size)
-        return sp.csr_matrix((data, cell._indices, cell._indptr), shape=(self.n_dofs, self.n_dofs))
+        return cell.csr(np.bincount(self._system_scatter, weights=np.concatenate([volume.ravel(), facet.ravel()]),
+                                    minlength=cell.nnz))
 
     def load(self, source: np.ndarray) -> np.ndarray:
         """int source phi_i r dA for a source given at quadrature points (ne, nq)."""
