@@ -53,6 +53,7 @@ from tqdm import tqdm
 
 from quenchsim.case import case_from_dict
 from quenchsim.errors import InputError, require
+from quenchsim.results import RunWriter, files
 
 RESULTS_CSV = "results.csv"
 SWEEP_JSON = "sweep.json"
@@ -275,9 +276,7 @@ def run_point(raw_case: dict[str, Any], case_path: str | None, condition: str | 
     Returns ``{"status": "ok" | "failed", "error": str | None, "summary": dict | None, "wall_s": float,
     "cpu_s": float}`` (wall and CPU time of this process for the case).
     """
-    import tomli_w
-
-    from quenchsim.simulation import run_case
+    from quenchsim.pipeline import run as run_case
 
     keep_freed_memory()
     out = Path(out_dir)
@@ -286,12 +285,11 @@ def run_point(raw_case: dict[str, Any], case_path: str | None, condition: str | 
     record = {"case": case_path, "condition": condition, "overrides": overrides,
               "inputs_hash": case_hash(raw_case, condition, overrides)}
     _write_json(out / CASE_JSON, record)
-    summary_path = out / "summary.json"
+    summary_path = out / files.SUMMARY_JSON
     summary_path.unlink(missing_ok=True)
     try:
         case = case_from_dict(raw_case, condition, overrides, path=Path(case_path) if case_path else None)
-        resolved = {"name": case.name, "condition": case.condition or "", **case.data}
-        (out / "case.toml").write_text(tomli_w.dumps(resolved))
+        RunWriter(out).case(case.resolved())
         summary = run_case(case, out, progress=False).summary
         status, error = str(summary.get("status", "ok")), summary.get("error")
     except Exception as exc:  # noqa: BLE001 -- a sweep records any failure of a case and goes on
@@ -308,7 +306,7 @@ def finished(case_dir: Path, inputs_hash: str) -> dict[str, Any] | None:
     """The summary of a case folder that finished with status ok for the same inputs, else None."""
     try:
         record = json.loads((case_dir / CASE_JSON).read_text())
-        summary = json.loads((case_dir / "summary.json").read_text())
+        summary = json.loads((case_dir / files.SUMMARY_JSON).read_text())
     except (OSError, ValueError):
         return None
     return summary if record.get("inputs_hash") == inputs_hash and summary.get("status") == "ok" else None

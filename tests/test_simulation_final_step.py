@@ -3,7 +3,7 @@
 import numpy as np
 
 from quenchsim.case import case_from_dict
-from quenchsim.simulation import QuenchRun
+from quenchsim.pipeline import QuenchRun
 
 
 def warm_ring() -> dict:

@@ -4,7 +4,7 @@ import numpy as np
 from test_simulation_final_step import warm_ring
 
 from quenchsim.case import case_from_dict
-from quenchsim.simulation import QuenchRun
+from quenchsim.pipeline import QuenchRun
 
 
 def test_thermal_section_and_cooling_do_not_depend_on_solving_the_stress(tmp_path):

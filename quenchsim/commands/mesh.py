@@ -6,7 +6,8 @@ import argparse
 from pathlib import Path
 
 from quenchsim.case import load_case
-from quenchsim.geometry import mesh_profile, profile_from_case
+from quenchsim.errors import require
+from quenchsim.geometry import mesh_profile
 from quenchsim.geometry.profile import MM
 
 
@@ -20,11 +21,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     case = load_case(args.case, args.condition)
-    size = args.mesh_size or case.number("mesh.size_mm")
-    scale = size / case.number("mesh.size_mm")
-    section = mesh_profile(profile_from_case(case.get("geometry", {})), size * MM,
-                           case.number("mesh.surface_size_mm") * scale * MM, case.number("mesh.surface_layer_mm") * MM,
-                           msh_path=args.out)
+    if args.mesh_size is not None:
+        require(args.mesh_size > 0, "--mesh-size", args.mesh_size, "must be > 0 (mm)")
+        case = case.with_mesh_size(args.mesh_size)
+    section = mesh_profile(case.profile, case.mesh.size_mm * MM, case.mesh.surface_size_mm * MM,
+                           case.mesh.surface_layer_mm * MM, msh_path=args.out)
     print(f"{section.n_elements} triangles, {section.mesh.p.shape[1]} nodes; segments: "
           + ", ".join(f"{k} ({len(v)} edges)" for k, v in section.boundaries.items()))
     if args.png:

@@ -38,16 +38,14 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from quenchsim.simulation import run_case
+    from quenchsim.pipeline import run as run_case
 
     overrides = parse_sets(args.set)
     case = load_case(args.case, args.condition, overrides)
     if args.mesh_size is not None:
         if args.mesh_size <= 0:
             raise InputError("--mesh-size", args.mesh_size, "must be > 0 (mm)")
-        scale = args.mesh_size / case.number("mesh.size_mm")
-        case.data["mesh"]["size_mm"] = args.mesh_size
-        case.data["mesh"]["surface_size_mm"] = case.number("mesh.surface_size_mm") * scale
+        case = case.with_mesh_size(args.mesh_size)
     out = args.out or Path("runs") / f"{case.name}_{case.condition or 'base'}"
     logging.basicConfig(level=logging.WARNING, format="quenchsim: %(message)s")
     result = run_case(case, out, progress=not args.quiet)

@@ -29,7 +29,7 @@ def run(args: argparse.Namespace) -> int:
 
     from quenchsim.errors import InputError
     from quenchsim.io.revolve import revolve_mesh
-    from quenchsim.report.report_data import last_frame, load_frame
+    from quenchsim.results import last_frame, load_frame
 
     pyvista.OFF_SCREEN = True
     frame_path = last_frame(args.run_dir) if args.run_dir.is_dir() else None

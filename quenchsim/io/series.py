@@ -57,10 +57,3 @@ class ProbeWriter:
 
     def close(self) -> None:
         self._fh.close()
-
-
-def read_probes(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-    """Read a probes.csv back: (time_s, {probe name: temperature_C})."""
-    data = np.genfromtxt(path, delimiter=",", names=True)
-    names = [n for n in data.dtype.names if n != "time_s"]
-    return data["time_s"], {n[:-2] if n.endswith("_C") else n: data[n] for n in names}

@@ -12,8 +12,8 @@ Public API::
 
 from quenchsim.mechanics.dimensions import dimension_change, ring_dimensions, section_outline
 from quenchsim.mechanics.loads import surface_load
-from quenchsim.mechanics.model import MechanicsModel, austenitized_scale, free_strain, load_mechanics
+from quenchsim.mechanics.model import OPTION_KEYS, MechanicsModel, austenitized_scale, free_strain, load_mechanics
 from quenchsim.mechanics.solver import MechanicsSolver, StepInfo
 
-__all__ = ["MechanicsModel", "MechanicsSolver", "StepInfo", "load_mechanics", "free_strain", "ring_dimensions",
+__all__ = ["OPTION_KEYS", "MechanicsModel", "MechanicsSolver", "StepInfo", "load_mechanics", "free_strain", "ring_dimensions",
            "dimension_change", "section_outline", "surface_load", "austenitized_scale"]

@@ -23,7 +23,8 @@ import numpy as np
 
 from quenchsim.errors import InputError
 from quenchsim.report import report_plots as plots
-from quenchsim.report.report_data import PHASES, RunData, is_sweep_dir, load_run, measured_dimensions
+from quenchsim.report.report_data import PHASES, is_sweep_dir, measured_dimensions
+from quenchsim.results import RunResults, load
 
 RESPONSE_OUTPUTS = ("hardness.depth_mm.", "hardness.core_HRC", "hardness.surface_HRC.", "dimensions_mm.change.",
                     "residual_stress_MPa.hoop.", "phases_final.martensite.mean", "phases_final.bainite.mean",
@@ -66,7 +67,7 @@ def fmt(value: Any) -> str:
 
 
 # -- run directory --------------------------------------------------------------------------------------
-def _maps(run: RunData, missing: list[str]) -> list[Item]:
+def _maps(run: RunResults, missing: list[str]) -> list[Item]:
     frame = run.frame
     if frame is None:
         missing.append("phase and hardness maps: no results_*.vtu frame")
@@ -99,7 +100,7 @@ def _maps(run: RunData, missing: list[str]) -> list[Item]:
     return items
 
 
-def _summary_tables(run: RunData) -> list[Item]:
+def _summary_tables(run: RunResults) -> list[Item]:
     s = run.summary or {}
     items = []
     solver = s.get("solver", {})
@@ -135,7 +136,7 @@ def _summary_tables(run: RunData) -> list[Item]:
     return items
 
 
-def _dimension_table(run: RunData, missing: list[str]) -> list[Item]:
+def _dimension_table(run: RunResults, missing: list[str]) -> list[Item]:
     dims = (run.summary or {}).get("dimensions_mm")
     meas = measured_dimensions(run.case)
     if not dims:
@@ -166,7 +167,7 @@ def _dimension_table(run: RunData, missing: list[str]) -> list[Item]:
     return items
 
 
-def run_section(run: RunData) -> Section:
+def run_section(run: RunResults) -> Section:
     """Everything the report shows of one run directory."""
     items = _summary_tables(run)
     missing: list[str] = []
@@ -254,7 +255,7 @@ def sweep_section(path: Path) -> Section:
     return Section(f"Sweep: {meta.get('name', path.name)} ({path.name})", items)
 
 
-def comparison_section(runs: list[RunData]) -> Section:
+def comparison_section(runs: list[RunResults]) -> Section:
     """Key outputs of several runs side by side."""
     keys = [("status", ("status",)), ("core HRC", ("hardness", "core_HRC")),
             ("HRC58 depth bore (mm)", ("hardness", "depth_mm", "HRC58_bore_mid")),
@@ -366,14 +367,14 @@ def write_report(dirs: list[str | Path], out_html: str | Path, title: str = "que
     if not paths:
         raise InputError("RUN_DIR", None, "give at least one run or sweep directory")
     sections: list[Section] = []
-    runs: list[RunData] = []
+    runs: list[RunResults] = []
     for p in paths:
         if not p.is_dir():
             raise InputError("RUN_DIR", str(p), "is not a directory")
         if is_sweep_dir(p):
             sections.append(sweep_section(p))
         else:
-            run = load_run(p)
+            run = load(p)
             if run.summary is None and run.frame is None and run.probes is None:
                 raise InputError("RUN_DIR", str(p), "holds no run output (summary.json, results_*.vtu, probes.csv)")
             runs.append(run)

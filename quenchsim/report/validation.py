@@ -19,7 +19,7 @@ import numpy as np
 
 from quenchsim.case import Case, load_case
 from quenchsim.report import report_plots
-from quenchsim.report.report_data import load_run
+from quenchsim.results import load as load_run
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
 RUNS = Path("runs") / "validation"

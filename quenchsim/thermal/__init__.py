@@ -1,6 +1,6 @@
 """Transient axisymmetric heat conduction with latent heat (scikit-fem, P2, r-weighted forms).
 
-API (used by :mod:`quenchsim.simulation` and by studies such as the ISO 9950 probe)::
+API (used by :mod:`quenchsim.pipeline` and by studies such as the ISO 9950 probe)::
 
     fe = AxisymmetricP2(mesh, robin_facets)            # mesh in metres, x = r, y = z
     solver = ThermalSolver(fe, thermal_properties(material), T_initial_C, phase_model, phase_state)
@@ -12,8 +12,8 @@ API (used by :mod:`quenchsim.simulation` and by studies such as the ISO 9950 pro
 """
 
 from quenchsim.thermal.assembly import AxisymmetricP2
-from quenchsim.thermal.boundary import TableHTC, parse_htc_table
+from quenchsim.thermal.boundary import SurfaceTemperatureHTC, TableHTC, parse_htc_table
 from quenchsim.thermal.solver import NoTransformation, PhaseModel, ThermalSolver, ThermalStep
 
-__all__ = ["AxisymmetricP2", "TableHTC", "parse_htc_table", "NoTransformation",
+__all__ = ["AxisymmetricP2", "SurfaceTemperatureHTC", "TableHTC", "parse_htc_table", "NoTransformation",
            "PhaseModel", "ThermalSolver", "ThermalStep"]

@@ -88,3 +88,15 @@ def parse_htc_table(spec: dict[str, Any], segment_of_point: np.ndarray, field: s
         require(name in known, f"{field}.segments.{name}", name, f"unknown segment; the section has {sorted(known)}")
     return TableHTC([t[1][0] for t in tables], [t[1][1] for t in tables], [t[1][2] for t in tables],
                     [t[1][3] for t in tables], which)
+
+
+class SurfaceTemperatureHTC:
+    """A boundary HTC that depends on the surface temperature only (e.g. the bath model's curves per point),
+    in the ``htc(T_surface_C, time_s)`` form the solver calls; ``curves(T_surface_C)`` gives h per point."""
+
+    def __init__(self, curves: Any) -> None:
+        self.curves = curves
+        self.ambient_C = np.asarray(curves.ambient_C)
+
+    def __call__(self, T_surface_C: np.ndarray, time_s: float) -> np.ndarray:
+        return self.curves(T_surface_C)

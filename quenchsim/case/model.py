@@ -1,0 +1,158 @@
+"""Frozen dataclasses of a parsed case (built by :mod:`quenchsim.case.parse`; every value already checked).
+
+Tables of a case file and the dataclass each becomes:
+
+``name``, ``description``  the case's name (default: the file name) and a free text
+``material``       steel name (materials/NAME.toml)
+``[geometry]``     ``type = "rectangular" | "spherical_outer" | "profile"`` and its dimensions -> ``profile``
+``[mesh]``         ``size_mm`` (core), ``surface_size_mm``, ``surface_layer_mm``      -> :class:`MeshSpec`
+``[process]``      ``austenitising_temperature_C``, ``room_temperature_C``            -> :class:`ProcessSpec`
+``[quench]``       ``time_s``, ``htc_model = "bath" | "table"``, ``[quench.bath]`` (bath model) or
+                   ``[quench.htc_table]`` (``T_C``, ``h_W_m2K``, ``ambient_C``; optional per-segment
+                   ``[quench.htc_table.segments.NAME]``; ``time_s`` + ``h_W_m2K`` for HTC vs time)  -> :class:`QuenchStage`
+``[air]``          ``temperature_C``, ``until_max_C`` (stop when the hottest point is below) or ``time_s``,
+                   ``htc_model = "natural" | "table"`` with ``emissivity`` or ``[air.htc_table]`` -> :class:`AirStage`
+``[[probes]]``     ``name``, ``r_mm``, ``z_mm``                                       -> :class:`Probe`
+``[time]``         step control: ``dt_initial_s``, ``dt_min_s``, ``dt_max_s``, ``max_dT_K``, ``max_dX``,
+                   ``growth``                                                        -> :class:`TimeControl`
+``[output]``       ``frames`` (number of VTK frames)                                 -> :class:`OutputSpec`
+``[mechanics]``    ``enabled``, ``fixed_point_mm`` and the stress solver's options (``plasticity``, ``trip``,
+                   ``newton_rtol``, ...)                                            -> :class:`MechanicsOptions`
+``[measured]``, ``[peer]``  measured or published results of the case, for reports; not read by the run
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from quenchsim.bath import BathConfig
+from quenchsim.geometry.profile import Profile
+
+
+@dataclass(frozen=True)
+class MeshSpec:
+    size_mm: float
+    surface_size_mm: float
+    surface_layer_mm: float
+
+
+@dataclass(frozen=True)
+class ProcessSpec:
+    austenitising_temperature_C: float
+    room_temperature_C: float
+
+
+@dataclass(frozen=True)
+class QuenchStage:
+    """The oil stage: its length and either the bath model (``bath``) or HTC tables (``htc_table``)."""
+
+    time_s: float
+    htc_model: str
+    bath: BathConfig | None
+    htc_table: Mapping[str, Any] | None
+
+
+@dataclass(frozen=True)
+class AirStage:
+    """Cooling in air after the quench, until the hottest point is below ``until_max_C`` or ``time_s`` ends."""
+
+    temperature_C: float
+    until_max_C: float
+    time_s: float
+    htc_model: str
+    emissivity: float
+    htc_table: Mapping[str, Any] | None
+
+
+@dataclass(frozen=True)
+class TimeControl:
+    """Adaptive step control (the mechanics takes the same steps)."""
+
+    dt_initial_s: float
+    dt_min_s: float
+    dt_max_s: float
+    max_dT_K: float
+    max_dX: float
+    growth: float
+
+
+@dataclass(frozen=True)
+class OutputSpec:
+    frames: int
+
+
+@dataclass(frozen=True)
+class MechanicsOptions:
+    """Whether the stress is solved, the optional fixed point (case geometry, mm) and the solver options
+    passed on to :func:`quenchsim.mechanics.load_mechanics` (checked there, at parse time)."""
+
+    enabled: bool
+    fixed_point_mm: tuple[float, float] | None
+    solver_options: Mapping[str, Any]
+
+
+@dataclass(frozen=True)
+class Probe:
+    name: str
+    r_mm: float
+    z_mm: float
+
+
+@dataclass(frozen=True)
+class Case:
+    """A fully resolved, checked case. ``data`` is the merged table it was parsed from (written to a run's
+    case.toml); derive new cases with :meth:`with_overrides` or :meth:`refined`, never by editing it."""
+
+    name: str
+    condition: str | None
+    path: Path | None
+    data: Mapping[str, Any]
+    material: str
+    profile: Profile
+    reference_state: str
+    mesh: MeshSpec
+    process: ProcessSpec
+    quench: QuenchStage
+    air: AirStage
+    time: TimeControl
+    output: OutputSpec
+    mechanics: MechanicsOptions
+    probes: tuple[Probe, ...]
+
+    def get(self, dotted: str, default: Any = None) -> Any:
+        """The raw value at a dotted path of the merged table (for reports; the run reads the typed fields)."""
+        node: Any = self.data
+        for key in dotted.split("."):
+            if not isinstance(node, Mapping) or key not in node:
+                return default
+            node = node[key]
+        return node
+
+    def resolved(self) -> dict[str, Any]:
+        """The fully resolved inputs as written to a run's case.toml."""
+        return {"name": self.name, "condition": self.condition or "", **self.data}
+
+    def with_overrides(self, overrides: Mapping[str, Any]) -> "Case":
+        """A new case with dotted-path ``overrides`` applied to this one's table, checked again."""
+        from quenchsim.case.parse import build_case
+
+        return build_case(self.data, self.name, self.condition, self.path, overrides)
+
+    def refined(self, mesh: float = 1.0, step: float = 1.0) -> "Case":
+        """The same case with element sizes times ``mesh`` and the step control (initial step, limits on the
+        temperature and phase change per step) times ``step`` (e.g. ``mesh=0.5`` halves the element size)."""
+        overrides: dict[str, Any] = {}
+        if mesh != 1.0:
+            overrides["mesh.size_mm"] = self.mesh.size_mm * mesh
+            overrides["mesh.surface_size_mm"] = self.mesh.surface_size_mm * mesh
+        if step != 1.0:
+            for key in ("max_dT_K", "max_dX", "dt_initial_s"):
+                overrides[f"time.{key}"] = getattr(self.time, key) * step
+        return self.with_overrides(overrides)
+
+    def with_mesh_size(self, size_mm: float) -> "Case":
+        """The case with core element size ``size_mm`` and the surface size scaled in proportion."""
+        return self.refined(mesh=size_mm / self.mesh.size_mm)

@@ -1,0 +1,268 @@
+"""Loading a case file and checking every field before any work starts (one place, one error type).
+
+Every check a run needs is done here: the material and its mechanics options, the geometry (the
+profile is built), the probes (inside the section), the bath model or the HTC tables (against the
+section's segment names), the step control and the output. A case that passes can be meshed and run.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import tomllib
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from quenchsim.case.model import (AirStage, Case, MechanicsOptions, MeshSpec, OutputSpec, Probe, ProcessSpec,
+                                  QuenchStage, TimeControl)
+from quenchsim.errors import InputError, require
+from quenchsim.geometry.profile import MM, profile_from_case
+
+DEFAULTS: dict[str, Any] = {
+    "mesh": {"size_mm": 5.0, "surface_size_mm": 1.2, "surface_layer_mm": 10.0},
+    "process": {"austenitising_temperature_C": 845.0, "room_temperature_C": 25.0},
+    "air": {"temperature_C": 25.0, "until_max_C": 40.0, "time_s": 20000.0, "htc_model": "natural",
+            "emissivity": 0.8},
+    "time": {"dt_initial_s": 0.02, "dt_min_s": 1e-3, "dt_max_s": 120.0, "max_dT_K": 20.0, "max_dX": 0.1,
+             "growth": 1.5},
+    "output": {"frames": 40},
+    "mechanics": {"enabled": True, "plasticity": True, "trip": True},
+}
+
+TABLE_KEYS: dict[str, tuple[str, ...]] = {
+    "": ("name", "description", "material", "geometry", "mesh", "process", "quench", "air", "time", "output",
+         "mechanics", "probes", "measured", "peer", "conditions"),
+    "mesh": ("size_mm", "surface_size_mm", "surface_layer_mm"),
+    "process": ("austenitising_temperature_C", "room_temperature_C"),
+    "quench": ("time_s", "htc_model", "bath", "htc_table"),
+    "air": ("temperature_C", "until_max_C", "time_s", "htc_model", "emissivity", "htc_table"),
+    "time": ("dt_initial_s", "dt_min_s", "dt_max_s", "max_dT_K", "max_dX", "growth"),
+    "output": ("frames",),
+}
+"""Known keys of each table (a key not listed is an error: a misspelt key must not be ignored)."""
+
+
+def deep_merge(base: Mapping[str, Any], override: Mapping[str, Any]) -> dict[str, Any]:
+    """Recursively merge ``override`` into a copy of ``base`` (tables merge, other values replace)."""
+    out = copy.deepcopy(dict(base))
+    for key, value in override.items():
+        if isinstance(value, Mapping) and isinstance(out.get(key), Mapping):
+            out[key] = deep_merge(out[key], value)
+        else:
+            out[key] = copy.deepcopy(value)
+    return out
+
+
+def set_dotted(data: dict[str, Any], dotted: str, value: Any) -> None:
+    """Set ``data["a"]["b"]["c"] = value`` for ``dotted = "a.b.c"`` (creating tables)."""
+    keys = dotted.split(".")
+    node = data
+    for key in keys[:-1]:
+        node = node.setdefault(key, {})
+        if not isinstance(node, dict):
+            raise InputError(dotted, value, f"'{key}' is not a table")
+    node[keys[-1]] = value
+
+
+def _number(table: Mapping[str, Any], key: str, field: str, *, positive: bool = False,
+            minimum: float | None = None, maximum: float | None = None) -> float:
+    if key not in table:
+        raise InputError(field, None, "is required")
+    value = table[key]
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise InputError(field, value, "must be a finite number")
+    if positive:
+        require(value > 0, field, value, "must be > 0")
+    if minimum is not None:
+        require(value >= minimum, field, value, f"must be >= {minimum:g}")
+    if maximum is not None:
+        require(value <= maximum, field, value, f"must be <= {maximum:g}")
+    return float(value)
+
+
+def _table(data: Mapping[str, Any], name: str) -> Mapping[str, Any]:
+    table = data.get(name, {})
+    require(isinstance(table, Mapping), name, table, "must be a table")
+    for key in table:
+        require(key in TABLE_KEYS[name], f"{name}.{key}", table[key],
+                f"unknown key; [{name}] takes {', '.join(TABLE_KEYS[name])}")
+    return table
+
+
+def load_case(path: str | Path, condition: str | None = None,
+              overrides: Mapping[str, Any] | None = None) -> Case:
+    """Load a case file, merge ``[conditions.<condition>]`` and dotted ``overrides``, check everything."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError("case", str(path), "file not found")
+    with path.open("rb") as fh:
+        try:
+            raw = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise InputError("case", str(path), f"is not valid TOML ({exc})") from None
+    return case_from_dict(raw, condition, overrides, path=path)
+
+
+def case_from_dict(raw: Mapping[str, Any], condition: str | None = None,
+                   overrides: Mapping[str, Any] | None = None, path: Path | None = None) -> Case:
+    """Build and check a case from a dict (as read from TOML); see :func:`load_case`."""
+    conditions = raw.get("conditions", {})
+    require(isinstance(conditions, Mapping), "conditions", conditions, "must be a table of [conditions.NAME] tables")
+    data = deep_merge(DEFAULTS, {k: v for k, v in raw.items() if k != "conditions"})
+    if condition is not None:
+        condition = str(condition)
+        if condition not in conditions:
+            raise InputError("--condition", condition,
+                             f"not in this case; available: {', '.join(sorted(conditions)) or 'none'}")
+        data = deep_merge(data, conditions[condition])
+    elif conditions:
+        raise InputError("--condition", None, f"required; available: {', '.join(sorted(conditions))}")
+    name = str(raw.get("name", path.stem if path else "case"))
+    return build_case(data, name, condition, path, overrides)
+
+
+def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: Path | None,
+               overrides: Mapping[str, Any] | None = None) -> Case:
+    """Parse the merged table ``data`` (plus dotted ``overrides``) into a checked :class:`Case`."""
+    data = deep_merge(data, {})
+    for dotted, value in (overrides or {}).items():
+        set_dotted(data, dotted, value)
+    for key in data:
+        require(key in TABLE_KEYS[""], key, data[key], f"unknown table or key; a case takes {', '.join(TABLE_KEYS[''])}")
+
+    material = _material(data)
+    geometry = data.get("geometry", {})
+    require(isinstance(geometry, Mapping), "geometry", geometry, "must be a table")
+    profile = profile_from_case(dict(geometry))
+    reference_state = geometry.get("reference_state", "annealed")
+    require(reference_state in ("annealed", "austenitised"), "geometry.reference_state", reference_state,
+            "must be 'annealed' or 'austenitised'")
+    segments = sorted({s.name for s in profile.segments} - {"axis"})
+
+    m = _table(data, "mesh")
+    mesh = MeshSpec(size_mm=_number(m, "size_mm", "mesh.size_mm", positive=True),
+                    surface_size_mm=_number(m, "surface_size_mm", "mesh.surface_size_mm", positive=True),
+                    surface_layer_mm=_number(m, "surface_layer_mm", "mesh.surface_layer_mm", minimum=0.0))
+    p = _table(data, "process")
+    process = ProcessSpec(
+        austenitising_temperature_C=_number(p, "austenitising_temperature_C", "process.austenitising_temperature_C",
+                                            minimum=600.0, maximum=1200.0),
+        room_temperature_C=_number(p, "room_temperature_C", "process.room_temperature_C", minimum=-50.0, maximum=100.0))
+    quench = _quench(data, segments, process)
+    air = _air(data, segments)
+    time = _time(data)
+    o = _table(data, "output")
+    frames = o.get("frames")
+    require(isinstance(frames, int) and not isinstance(frames, bool) and frames >= 2, "output.frames", frames,
+            "must be an integer >= 2")
+    mechanics = _mechanics(data, material, process)
+    probes = _probes(data, profile)
+    return Case(name=name, condition=condition, path=path, data=data, material=material, profile=profile,
+                reference_state=reference_state, mesh=mesh, process=process, quench=quench, air=air, time=time,
+                output=OutputSpec(frames=frames), mechanics=mechanics, probes=probes)
+
+
+def _material(data: Mapping[str, Any]) -> str:
+    from quenchsim.materials import load_material  # data lookup only
+
+    if "material" not in data:
+        raise InputError("material", None, "is required (a name in materials/)")
+    name = data["material"]
+    require(isinstance(name, str) and name != "", "material", name, "must be a material name or a path")
+    load_material(name)
+    return name
+
+
+def _htc_tables(spec: Any, field: str, segments: list[str]) -> Mapping[str, Any]:
+    """Check an HTC table against the section's segment names (the point labels of the run)."""
+    from quenchsim.thermal import parse_htc_table
+
+    require(isinstance(spec, Mapping), field, spec, "required (a table) when the htc_model is 'table'")
+    parse_htc_table(dict(spec), np.array(segments), field)
+    return spec
+
+
+def _quench(data: Mapping[str, Any], segments: list[str], process: ProcessSpec) -> QuenchStage:
+    q = _table(data, "quench")
+    time_s = _number(q, "time_s", "quench.time_s", positive=True)
+    model = q.get("htc_model", "table")
+    require(model in ("bath", "table"), "quench.htc_model", model, "must be 'bath' or 'table'")
+    bath = table = None
+    if model == "bath":
+        from quenchsim.bath import parse_bath
+
+        bath = parse_bath(dict(q.get("bath", {})), "quench.bath")
+        ambients = [bath.oil_temperature_C]
+    else:
+        table = _htc_tables(q.get("htc_table"), "quench.htc_table", segments)
+        ambients = [table.get("ambient_C")] + [s.get("ambient_C") for s in table.get("segments", {}).values()]
+    T_aust = process.austenitising_temperature_C
+    for T in ambients:
+        if isinstance(T, (int, float)) and T >= T_aust:
+            field = "quench.bath.oil_temperature_C" if model == "bath" else "quench.htc_table.ambient_C"
+            raise InputError(field, T, f"the quench medium must be colder than the austenitising temperature {T_aust:g} C")
+    return QuenchStage(time_s=time_s, htc_model=model, bath=bath, htc_table=table)
+
+
+def _air(data: Mapping[str, Any], segments: list[str]) -> AirStage:
+    a = _table(data, "air")
+    model = a.get("htc_model")
+    require(model in ("natural", "table"), "air.htc_model", model, "must be 'natural' or 'table'")
+    temperature = _number(a, "temperature_C", "air.temperature_C", minimum=-50.0, maximum=200.0)
+    return AirStage(temperature_C=temperature,
+                    until_max_C=_number(a, "until_max_C", "air.until_max_C", minimum=temperature),
+                    time_s=_number(a, "time_s", "air.time_s", positive=True),
+                    htc_model=model,
+                    emissivity=_number(a, "emissivity", "air.emissivity", minimum=0.0, maximum=1.0),
+                    htc_table=_htc_tables(a.get("htc_table"), "air.htc_table", segments) if model == "table" else None)
+
+
+def _time(data: Mapping[str, Any]) -> TimeControl:
+    t = _table(data, "time")
+    values = {key: _number(t, key, f"time.{key}", positive=True)
+              for key in ("dt_initial_s", "dt_min_s", "dt_max_s", "max_dT_K", "max_dX")}
+    growth = _number(t, "growth", "time.growth")
+    require(growth > 1.0, "time.growth", growth, "must be > 1")
+    require(values["dt_min_s"] <= values["dt_max_s"], "time.dt_min_s", values["dt_min_s"],
+            f"must not exceed time.dt_max_s = {values['dt_max_s']:g}")
+    return TimeControl(growth=growth, **values)
+
+
+def _mechanics(data: Mapping[str, Any], material: str, process: ProcessSpec) -> MechanicsOptions:
+    from quenchsim.mechanics import OPTION_KEYS
+
+    m = data.get("mechanics", {})
+    require(isinstance(m, Mapping), "mechanics", m, "must be a table")
+    enabled = m.get("enabled", True)
+    require(isinstance(enabled, bool), "mechanics.enabled", enabled, "must be true or false")
+    fixed = m.get("fixed_point_mm")
+    if fixed is not None:
+        require(isinstance(fixed, list) and len(fixed) == 2
+                and all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in fixed),
+                "mechanics.fixed_point_mm", fixed, "must be [r, z] in mm (case geometry)")
+        fixed = (float(fixed[0]), float(fixed[1]))
+    options = {k: v for k, v in m.items() if k not in ("enabled", "fixed_point_mm")}
+    for key, value in options.items():
+        require(key in OPTION_KEYS, f"mechanics.{key}", value,
+                f"unknown option; allowed: enabled, fixed_point_mm, {', '.join(OPTION_KEYS)}")
+    return MechanicsOptions(enabled=enabled, fixed_point_mm=fixed, solver_options=options)
+
+
+def _probes(data: Mapping[str, Any], profile: Any) -> tuple[Probe, ...]:
+    probes = data.get("probes", [])
+    require(isinstance(probes, list), "probes", probes, "must be an array of tables [[probes]]")
+    out: list[Probe] = []
+    for i, probe in enumerate(probes):
+        field = f"probes[{i}]"
+        require(isinstance(probe, Mapping) and isinstance(probe.get("name"), str), f"{field}.name",
+                probe.get("name") if isinstance(probe, Mapping) else probe, "must be a string")
+        require(probe["name"] not in {p.name for p in out}, f"{field}.name", probe["name"], "must be unique")
+        r = _number(probe, "r_mm", f"{field}.r_mm", minimum=0.0)
+        z = _number(probe, "z_mm", f"{field}.z_mm")
+        if not profile.contains(r * MM, z * MM) and profile.distance(r * MM, z * MM) > 1e-9:
+            raise InputError(field, f"{probe['name']} at ({r:g}, {z:g}) mm", "lies outside the section")
+        out.append(Probe(name=probe["name"], r_mm=r, z_mm=z))
+    return tuple(out)

@@ -1,0 +1,319 @@
+"""The staged quench, top to bottom: section -> boundary -> HTC -> stages -> results.
+
+The ring is austenitised (uniform T, stress free), quenched, then cooled in air to room temperature.
+Each time step solves the thermal problem with the phase kinetics inside its fixed-point iteration,
+then (when enabled) the stress problem with the same step. The step starts small, grows under limits
+on the temperature and phase change per step, and is cut back and retried when an iteration does not
+converge (logged). Probes and VTK frames are written as they are produced; a run that fails keeps them
+and records where it stopped in ``summary.json``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import math
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import skfem
+from tqdm import tqdm
+
+from quenchsim import mechanics, metallurgy
+from quenchsim.case import Case
+from quenchsim.errors import QuenchsimError, SolverError
+from quenchsim.fem import INTORDER
+from quenchsim.geometry import BoundaryPoints, SectionMesh, boundary_points, mesh_profile
+from quenchsim.geometry.profile import MM, Profile
+from quenchsim.materials import load_material, thermal_properties
+from quenchsim.results import RunWriter
+from quenchsim.results.postprocess import NodalProjection, phase_statistics
+from quenchsim.results.summary import hardness_summary, probe_times, residual_stress_summary, residual_traverse
+from quenchsim.thermal import AxisymmetricP2, SurfaceTemperatureHTC, ThermalSolver, parse_htc_table
+
+log = logging.getLogger("quenchsim")
+# simulated seconds with one decimal (the float step sum would print as 46.931000000000004/900.0)
+PROGRESS_FORMAT = "{l_bar}{bar}| {n:.1f}/{total:.0f} s simulated [{elapsed}<{remaining}]"
+
+
+@dataclass
+class RunResult:
+    out_dir: Path
+    summary: dict[str, Any]
+    time_s: np.ndarray = field(repr=False, default_factory=lambda: np.zeros(0))
+    probe_T_C: dict[str, np.ndarray] = field(repr=False, default_factory=dict)
+
+
+def run(case: Case, out_dir: str | Path, progress: bool = True) -> RunResult:
+    """Run ``case`` and write everything into ``out_dir`` (the output contract: :mod:`quenchsim.results`)."""
+    return QuenchRun(case, Path(out_dir), progress=progress).run()
+
+
+# -- section ------------------------------------------------------------------------------------
+@dataclass
+class Section:
+    """The meshed section in the quench's (austenitised) geometry and in the "before" (case-file
+    reference) geometry, the stress model when the stress is solved, and the scale between them."""
+
+    hot: SectionMesh
+    before_mesh: skfem.MeshTri
+    profile_before: Profile
+    case_to_hot: float
+    mech_model: Any
+
+
+def build_section(case: Case, material: dict[str, Any], msh_path: Path) -> Section:
+    """Mesh the case's profile and move it to the austenitised geometry.
+
+    The quench starts from the austenitised section whether or not the stress is solved; the "before"
+    section is the room-temperature annealed one, smaller by the free strain between the two states.
+    The case file gives one of them (``geometry.reference_state``)."""
+    T_aust = case.process.austenitising_temperature_C
+    section = mesh_profile(case.profile, case.mesh.size_mm * MM, case.mesh.surface_size_mm * MM,
+                           case.mesh.surface_layer_mm * MM, msh_path=msh_path)
+    if "mechanics" not in material:
+        return Section(section, section.mesh, case.profile, 1.0, None)
+    solve_stress = case.mechanics.enabled
+    # a thermal-only run needs the free strains (for the hot section) but no flow or TRIP data
+    options = dict(case.mechanics.solver_options) if solve_stress else {"plasticity": False, "trip": False}
+    mech_model = mechanics.load_mechanics(material, {**options, "austenitizing_T_C": T_aust})
+    scale = mechanics.austenitized_scale(mech_model)
+    mesh = section.mesh
+    if case.reference_state == "annealed":
+        profile_before, profile, case_to_hot = case.profile, case.profile.scaled(scale), scale
+        hot, before_mesh = skfem.MeshTri(mesh.p * scale, mesh.t), mesh
+    else:
+        profile_before, profile, case_to_hot = case.profile.scaled(1.0 / scale), case.profile, 1.0
+        hot, before_mesh = mesh, skfem.MeshTri(mesh.p / scale, mesh.t)
+    return Section(SectionMesh(mesh=hot, boundaries=section.boundaries, profile=profile), before_mesh, profile_before,
+                   case_to_hot, mech_model if solve_stress else None)
+
+
+# -- boundary and HTC ---------------------------------------------------------------------------
+def cooled_surface_points(fe: AxisymmetricP2, section: SectionMesh) -> BoundaryPoints:
+    """The facet quadrature points of the cooled surface (everything but the axis), labelled by segment."""
+    return boundary_points(section, fe.facets, fe.facet_r, fe.facet_z, fe.facet_normals)
+
+
+def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
+    """The HTC of the quench or air stage as ``htc(T_surface, t)`` with ``ambient_C`` per point."""
+    from quenchsim import bath
+
+    if stage == "quench":
+        if case.quench.htc_model == "table":
+            return parse_htc_table(dict(case.quench.htc_table), points.segment, "quench.htc_table")
+        return SurfaceTemperatureHTC(bath.boundary_htc(case.quench.bath, points))
+    if case.air.htc_model == "table":
+        return parse_htc_table(dict(case.air.htc_table), points.segment, "air.htc_table")
+    return SurfaceTemperatureHTC(bath.air_htc(points, case.air.temperature_C, case.air.emissivity))
+
+
+class _Kinetics:
+    """Adapter: the metallurgy package as the thermal solver's phase model."""
+
+    def __init__(self, kin: Any) -> None:
+        self.kin = kin
+
+    def advance(self, state: Any, T_old_C: np.ndarray, T_new_C: np.ndarray, dt_s: float) -> Any:
+        return metallurgy.advance(state, self.kin, T_old_C, T_new_C, dt_s)
+
+    def fractions(self, state: Any) -> dict[str, np.ndarray]:
+        return state.fractions
+
+
+# -- the run ------------------------------------------------------------------------------------
+class QuenchRun:
+    """Everything of one run: section, solvers, output writer. Use :func:`run`."""
+
+    def __init__(self, case: Case, out_dir: Path, progress: bool = True) -> None:
+        self.case = case
+        self.writer = RunWriter(out_dir)
+        self.out = self.writer.out
+        self.writer.case(case.resolved())
+        self.progress = progress
+        self.material = load_material(case.material)
+        self.T_aust = case.process.austenitising_temperature_C
+        self.T_room = case.process.room_temperature_C
+        built = build_section(case, self.material, self.writer.mesh_path)
+        self.section, self.before_mesh, self.profile_before = built.hot, built.before_mesh, built.profile_before
+        self.profile, self.case_to_hot, self.mech_model = built.hot.profile, built.case_to_hot, built.mech_model
+        cooled = np.concatenate([f for n, f in self.section.boundaries.items() if n != "axis"])
+        self.fe = AxisymmetricP2(self.section.mesh, cooled, intorder=INTORDER)
+        self.points = cooled_surface_points(self.fe, self.section)
+        self.kin = metallurgy.load_kinetics(self.material, self.T_aust)
+        self.phase_model = _Kinetics(self.kin)
+        self.thermal = ThermalSolver(self.fe, thermal_properties(self.material), self.T_aust, self.phase_model,
+                                     metallurgy.initial_state(self.fe.r_qp.shape, self.kin))
+        self.projection = NodalProjection(self.section.mesh, INTORDER)
+        fixed = case.mechanics.fixed_point_mm
+        fixed_m = None if fixed is None else (fixed[0] * MM * self.case_to_hot, fixed[1] * MM * self.case_to_hot)
+        self.mech = mechanics.MechanicsSolver(self.section.mesh, self.mech_model, fixed_m) if self.mech_model else None
+        # probe positions are given on the case's section; they move with it to the austenitised geometry
+        self.probe_names = [p.name for p in case.probes]
+        pts = np.array([[p.r_mm * MM, p.z_mm * MM] for p in case.probes]).reshape(-1, 2)
+        self.probe_matrix = self.fe.basis.probes(pts.T * self.case_to_hot) if len(pts) else None
+        self.timings: dict[str, float] = {}
+
+    def probe_temperatures(self) -> np.ndarray:
+        return self.probe_matrix @ self.thermal.T if self.probe_matrix is not None else np.zeros(0)
+
+    def nodal_fields(self) -> dict[str, np.ndarray]:
+        nv = self.section.mesh.p.shape[1]
+        state = self.thermal.phase_state
+        data = {"temperature_C": self.thermal.T[:nv].copy()}
+        for phase, X in state.fractions.items():
+            data[phase] = self.projection(X)
+        hv = metallurgy.hardness_HV(state, self.kin)
+        data["hardness_HV"] = self.projection(hv)
+        data["hardness_HRC"] = metallurgy.hv_to_hrc(data["hardness_HV"])
+        if self.mech is not None:
+            data.update(self.mech.nodal_fields())
+        return data
+
+    def run(self) -> RunResult:
+        case, ctl = self.case, self.case.time
+        wall0 = time.perf_counter()
+        vtk = self.writer.series(self.section.mesh.p, self.section.mesh.t)
+        probes = self.writer.probes(self.probe_names)
+        times, probe_rows = [0.0], [self.probe_temperatures()]
+        probes.write(0.0, probe_rows[0])
+        vtk.write(0.0, self.nodal_fields())
+        self._last_frame_T = self.thermal.T.copy()
+        dt = ctl.dt_initial_s
+        steps, rejected, energy_out, latent = 0, 0, 0.0, 0.0
+        frame_dT = (self.T_aust - self.T_room) / case.output.frames
+        status, error = "ok", None
+        stages = [("quench", case.quench.time_s, -math.inf), ("air", case.air.time_s, case.air.until_max_C)]
+        try:
+            for stage, duration, until in stages:
+                with self.timer("bath_htc_s"):
+                    htc = stage_htc(case, stage, self.points)
+                t_end = self.thermal.time_s + duration
+                bar = tqdm(total=round(duration, 3), desc=f"{case.name}[{case.condition}] {stage}", unit="s",
+                           bar_format=PROGRESS_FORMAT, disable=not self.progress, leave=False)
+                while self.thermal.time_s < t_end - 1e-9 and float(np.max(self.thermal.T)) > until:
+                    dt = min(dt, t_end - self.thermal.time_s)
+                    try:
+                        with self.timer("thermal_metallurgy_s"):
+                            step = self.thermal.try_step(dt, htc)
+                    except SolverError as exc:
+                        if dt / 2 < ctl.dt_min_s:
+                            raise
+                        log.warning("%s; cutting the step to %.3g s", exc, dt / 2)
+                        dt, rejected = dt / 2, rejected + 1
+                        continue
+                    limit = max(step.max_dT_K / ctl.max_dT_K, step.max_dX / ctl.max_dX)
+                    if limit > 2.0 and dt / 2 >= ctl.dt_min_s:
+                        dt, rejected = dt / 2, rejected + 1
+                        continue
+                    with self.timer("mechanics_s"):
+                        converged = self._mechanics_step(step.T_qp, step.phase_state.fractions)
+                    if not converged:
+                        if dt / 2 < ctl.dt_min_s:
+                            raise SolverError(f"the stress solver did not converge at t = {self.thermal.time_s:.4g} s "
+                                              f"even with the smallest step {dt:.3g} s")
+                        log.warning("stress Newton did not converge (dt = %.3g s at t = %.4g s); cutting the step",
+                                    dt, self.thermal.time_s)
+                        dt, rejected = dt / 2, rejected + 1
+                        continue
+                    self.thermal.commit(step)
+                    steps += 1
+                    energy_out += step.heat_out_J
+                    latent += step.latent_J
+                    times.append(self.thermal.time_s)
+                    probe_rows.append(self.probe_temperatures())
+                    probes.write(self.thermal.time_s, probe_rows[-1])
+                    # a frame per 1/frames of the whole cooling, measured by the mean nodal change (the
+                    # max-norm counted the fast surface swings: ~260 frames for 40 requested)
+                    if float(np.mean(np.abs(self.thermal.T - self._last_frame_T))) >= frame_dT:
+                        with self.timer("output_s"):
+                            vtk.write(self.thermal.time_s, self.nodal_fields())
+                        self._last_frame_T = self.thermal.T.copy()
+                    bar.update(round(step.dt_s, 3))
+                    grow = ctl.growth if limit < 1e-12 else min(ctl.growth, 0.9 / limit)
+                    dt = float(np.clip(dt * grow, ctl.dt_min_s, ctl.dt_max_s))
+                bar.close()
+            self._equilibrate_at_room_temperature()
+        except QuenchsimError as exc:
+            status, error = "failed", str(exc)
+            log.error("run stopped at t = %.4g s: %s", self.thermal.time_s, exc)
+        finally:
+            probes.close()
+        self.writer.final_3d(vtk.write(self.thermal.time_s, self.nodal_fields()))
+        time_arr = np.asarray(times)
+        probe_T = {n: np.array([row[i] for row in probe_rows]) for i, n in enumerate(self.probe_names)}
+        try:
+            summary = self.summary(time_arr, probe_T, wall0, steps, rejected, energy_out, latent)
+        except Exception as exc:  # keep what was computed: record the failure, then re-raise
+            self.writer.summary({"case": case.name, "condition": case.condition, "status": "failed",
+                                 "error": f"post-processing: {exc!r}"})
+            raise
+        summary["status"] = status
+        if error:
+            summary["error"] = error
+            summary["stopped_at_s"] = self.thermal.time_s
+        self.writer.summary(summary)
+        if error:
+            raise SolverError(f"{error} (results up to t = {self.thermal.time_s:.4g} s are in {self.out})")
+        return RunResult(self.out, summary, time_arr, probe_T)
+
+    @contextlib.contextmanager
+    def timer(self, key: str) -> Iterator[None]:
+        """Accumulate the wall time of a block into ``self.timings[key]`` (reported in summary.json)."""
+        t0 = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.timings[key] = self.timings.get(key, 0.0) + time.perf_counter() - t0
+
+    def _mechanics_step(self, T_qp: np.ndarray, fractions: dict[str, np.ndarray]) -> bool:
+        if self.mech is None:
+            return True
+        info = self.mech.step(T_qp, fractions, self.thermal.T_qp, self.thermal.fractions())
+        return bool(info.converged)
+
+    def _equilibrate_at_room_temperature(self) -> None:
+        """Final state: the whole ring at room temperature (the air stage ends when the hottest point
+        is below air.until_max_C; the last few kelvin are one step, with the martensite they still form).
+
+        The step takes no time for the diffusional reactions (dt = 0): its length is not modelled, and an
+        assumed hour at 20-40 C had let the peer's bainite law, extrapolated far below its 240-440 C data,
+        form 0.02 bainite out of retained austenite after the quench had ended."""
+        T_room = np.full(self.thermal.T.shape, self.T_room)
+        T_qp = self.fe.at_qp(T_room)
+        state = self.phase_model.advance(self.thermal.phase_state, self.thermal.T_qp, T_qp, 0.0)
+        if not self._mechanics_step(T_qp, state.fractions):
+            raise SolverError("the stress solver did not converge in the final step to room temperature")
+        self.thermal.T, self.thermal.T_qp, self.thermal.phase_state = T_room, T_qp, state
+
+    # -- summary --------------------------------------------------------------------------------
+    def mechanics_summary(self) -> dict[str, Any]:
+        """Dimensions before/after, residual stresses at mid-width, traverse and outline files."""
+        before = mechanics.ring_dimensions(self.before_mesh)
+        after = mechanics.ring_dimensions(self.section.mesh, self.mech.displacement_m)
+        r_mm, hoop, axial = residual_traverse(self.profile, self.projection.p1, self.mech.nodal_fields())
+        self.writer.residual_traverse(r_mm, hoop, axial)
+        self.writer.outline(mechanics.section_outline(self.before_mesh) / MM,
+                            mechanics.section_outline(self.section.mesh, self.mech.displacement_m) / MM)
+        return {"dimensions_mm": mechanics.dimension_change(before, after),
+                "residual_stress_MPa": residual_stress_summary(hoop, axial)}
+
+    def summary(self, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wall0: float, steps: int,
+                rejected: int, energy_out: float, latent: float) -> dict[str, Any]:
+        fields = self.nodal_fields()
+        out: dict[str, Any] = {"case": self.case.name, "condition": self.case.condition}
+        out["probes"] = probe_times(time_s, probe_T)
+        out["hardness"], traverse = hardness_summary(self.profile, self.projection.p1, fields["hardness_HRC"])
+        self.writer.hardness_traverse(traverse["bore"][0], traverse["bore"][1], traverse["od"][1])
+        out["phases_final"] = phase_statistics(self.thermal.fractions(), self.fe.r_dx)
+        if self.mech is not None:
+            out.update(self.mechanics_summary())
+        out["energy"] = {"heat_extracted_J": energy_out, "latent_released_J": latent}
+        out["solver"] = {"wall_time_s": time.perf_counter() - wall0, "stage_time_s": dict(self.timings), "steps": steps,
+                         "rejected_steps": rejected, "dofs": int(self.fe.n_dofs),
+                         "elements": int(self.section.n_elements), "end_time_s": float(self.thermal.time_s)}
+        return out

@@ -1,0 +1,98 @@
+"""The numbers of ``summary.json`` from the final state: probe times, hardness depths and traverses,
+surface and core hardness, phase statistics, dimensions and residual stresses at mid-width.
+
+Pure functions of arrays, a section profile and the P1 basis of the nodal fields (x = r, y = z, metres).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import skfem
+
+from quenchsim.geometry.profile import MM, Profile
+from quenchsim.results.postprocess import depth_below, time_to_temperature
+
+HRC_THRESHOLD = 58.0
+"""Hardness (HRC) whose depth below the surface is reported (HV650, the usual effective hardening depth
+criterion of through-hardening bearing steels)."""
+
+
+def probe_times(time_s: np.ndarray, probe_T: dict[str, np.ndarray]) -> dict[str, dict[str, float | None]]:
+    """Per probe: time to 500 C and 300 C, and t8/5 (800 -> 500 C), None where not reached."""
+    return {n: {"t_to_500C_s": time_to_temperature(time_s, T, 500.0),
+                "t_to_300C_s": time_to_temperature(time_s, T, 300.0),
+                "t8_5_s": _t_between(time_s, T, 800.0, 500.0)} for n, T in probe_T.items()}
+
+
+def _t_between(time_s: np.ndarray, T: np.ndarray, upper: float, lower: float) -> float | None:
+    a, b = time_to_temperature(time_s, T, upper), time_to_temperature(time_s, T, lower)
+    return None if a is None or b is None else b - a
+
+
+def surface_r_at(profile: Profile, z: float, inner: bool) -> float:
+    """Radius where the horizontal line at height z meets the bore (inner) or the OD surface."""
+    poly = profile.polygon(512)
+    x, y = poly[:, 0], poly[:, 1]
+    x2, y2 = np.roll(x, -1), np.roll(y, -1)
+    hit = (y - z) * (y2 - z) <= 0
+    hit &= y != y2
+    rs = x[hit] + (z - y[hit]) * (x2[hit] - x[hit]) / (y2[hit] - y[hit])
+    return float(rs.min() if inner else rs.max())
+
+
+def mid_width(profile: Profile) -> tuple[float, float, float]:
+    """(z at mid-width, bore radius there, OD radius there), metres."""
+    r0, r1, z0, z1 = profile.bounds()
+    z_mid = 0.5 * (z0 + z1)
+    return z_mid, surface_r_at(profile, z_mid, inner=True), surface_r_at(profile, z_mid, inner=False)
+
+
+def hardness_traverse(profile: Profile, p1: skfem.Basis, hrc_nodal: np.ndarray, side: str,
+                      n: int = 400) -> tuple[np.ndarray, np.ndarray]:
+    """HRC along mid-width from the bore ("bore") or OD ("od") surface into the wall: (depth_mm, HRC)."""
+    z_mid, r_bore, r_od = mid_width(profile)
+    depth = np.linspace(1e-6, r_od - r_bore - 1e-6, n)   # 1 um inside: the traverse ends on the surfaces
+    r = r_bore + depth if side == "bore" else r_od - depth
+    probe = p1.probes(np.vstack([r, np.full_like(r, z_mid)]))
+    return depth / MM, probe @ hrc_nodal
+
+
+def hardness_summary(profile: Profile, p1: skfem.Basis, hrc_nodal: np.ndarray
+                     ) -> tuple[dict[str, Any], dict[str, tuple[np.ndarray, np.ndarray]]]:
+    """The summary's ``hardness`` table and the two mid-width traverses {"bore": ..., "od": ...}."""
+    depth, traverse = {}, {}
+    for side in ("bore", "od"):
+        d, h = hardness_traverse(profile, p1, hrc_nodal, side)
+        traverse[side] = (d, h)
+        depth[f"HRC58_{side}_mid"] = depth_below(d, h, HRC_THRESHOLD)
+    surface = {}
+    for seg in profile.segments:
+        if seg.name == "axis" or seg.name.startswith(("chamfer", "radius")):
+            continue
+        a, mid, b = seg.points(3)
+        tangent = (b - a) / np.linalg.norm(b - a)
+        pt = mid + 1e-6 * np.array([-tangent[1], tangent[0]])   # left of a counter-clockwise outline = inside
+        surface[f"{seg.name}_mid"] = float((p1.probes(pt.reshape(2, 1)) @ hrc_nodal)[0])
+    z_mid, r_bore, r_od = mid_width(profile)
+    core = float((p1.probes(np.array([[0.5 * (r_bore + r_od)], [z_mid]])) @ hrc_nodal)[0])
+    table = {"depth_mm": depth, "surface_HRC": surface, "core_HRC": core, "threshold_HRC": HRC_THRESHOLD,
+             "through_hardened": bool(np.nanmin(hrc_nodal) >= HRC_THRESHOLD)}
+    return table, traverse
+
+
+def residual_traverse(profile: Profile, p1: skfem.Basis, fields: dict[str, np.ndarray],
+                      n: int = 200) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Hoop and axial stress (MPa) across the wall at mid-width: (r_mm, hoop, axial)."""
+    z_mid, r_bore, r_od = mid_width(profile)
+    r = np.linspace(r_bore + 1e-6, r_od - 1e-6, n)
+    probe = p1.probes(np.vstack([r, np.full_like(r, z_mid)]))
+    return r / MM, probe @ fields["stress_tt_Pa"] / 1e6, probe @ fields["stress_zz_Pa"] / 1e6
+
+
+def residual_stress_summary(hoop_MPa: np.ndarray, axial_MPa: np.ndarray) -> dict[str, dict[str, float]]:
+    """Hoop and axial residual stress at the OD surface, the bore surface and the core, mid-width."""
+    at = {"od_surface_mid": -1, "bore_surface_mid": 0, "core_mid": len(hoop_MPa) // 2}
+    return {"hoop": {k: float(hoop_MPa[i]) for k, i in at.items()},
+            "axial": {k: float(axial_MPa[i]) for k, i in at.items()}}
