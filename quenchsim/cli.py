@@ -14,7 +14,7 @@ import json
 import os
 import sys
 
-from quenchsim.errors import QuenchsimError
+from quenchsim.errors import QuenchsimError, RunInterrupted
 
 COMMANDS: dict[str, tuple[str, str]] = {
     "run": ("quenchsim.commands.run", "run one case and condition, write VTK/probes/summary"),
@@ -86,6 +86,9 @@ def main(argv: list[str] | None = None) -> int:
                     print(f"{key}: {value}")
             return 0
         return int(importlib.import_module(args._module).run(args) or 0)
+    except (RunInterrupted, KeyboardInterrupt) as exc:
+        print(f"quenchsim: {exc or 'interrupted'}", file=sys.stderr)
+        return 130
     except QuenchsimError as exc:
         print(f"quenchsim: error: {exc}", file=sys.stderr)
         return 2

@@ -27,3 +27,7 @@ def require(condition: bool, field: str, value: Any, allowed: str) -> None:
     """Raise :class:`InputError` unless ``condition`` holds."""
     if not condition:
         raise InputError(field, value, allowed)
+
+
+class RunInterrupted(QuenchsimError):
+    """A run stopped by Ctrl-C or SIGTERM; what it had computed is in its folder (status "interrupted")."""

@@ -13,6 +13,8 @@ from __future__ import annotations
 import contextlib
 import logging
 import math
+import signal
+import threading
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -25,7 +27,7 @@ from tqdm import tqdm
 
 from quenchsim import mechanics, metallurgy
 from quenchsim.case import Case
-from quenchsim.errors import QuenchsimError, SolverError
+from quenchsim.errors import QuenchsimError, RunInterrupted, SolverError
 from quenchsim.fem import INTORDER
 from quenchsim.geometry import BoundaryPoints, SectionMesh, boundary_points, mesh_profile
 from quenchsim.geometry.profile import MM, Profile
@@ -175,91 +177,123 @@ class QuenchRun:
         return data
 
     def run(self) -> RunResult:
-        case, ctl = self.case, self.case.time
+        case = self.case
         wall0 = time.perf_counter()
         vtk = self.writer.series(self.section.mesh.p, self.section.mesh.t)
         probes = self.writer.probes(self.probe_names)
-        times, probe_rows = [0.0], [self.probe_temperatures()]
-        probes.write(0.0, probe_rows[0])
+        self.times, self.probe_rows = [0.0], [self.probe_temperatures()]
+        probes.write(0.0, self.probe_rows[0])
         vtk.write(0.0, self.nodal_fields())
         self._last_frame_T = self.thermal.T.copy()
-        dt = ctl.dt_initial_s
-        steps, rejected, energy_out, latent = 0, 0, 0.0, 0.0
-        frame_dT = (self.T_aust - self.T_room) / case.output.frames
+        self.counts = {"steps": 0, "rejected": 0, "heat_out_J": 0.0, "latent_J": 0.0}
         status, error = "ok", None
-        stages = [("quench", case.quench.time_s, -math.inf), ("air", case.air.time_s, case.air.until_max_C)]
         try:
-            for stage, duration, until in stages:
-                with self.timer("bath_htc_s"):
-                    htc = stage_htc(case, stage, self.points)
-                t_end = self.thermal.time_s + duration
-                bar = tqdm(total=round(duration, 3), desc=f"{case.name}[{case.condition}] {stage}", unit="s",
-                           bar_format=PROGRESS_FORMAT, disable=not self.progress, leave=False)
-                while self.thermal.time_s < t_end - 1e-9 and float(np.max(self.thermal.T)) > until:
-                    dt = min(dt, t_end - self.thermal.time_s)
-                    try:
-                        with self.timer("thermal_metallurgy_s"):
-                            step = self.thermal.try_step(dt, htc)
-                    except SolverError as exc:
-                        if dt / 2 < ctl.dt_min_s:
-                            raise
-                        log.warning("%s; cutting the step to %.3g s", exc, dt / 2)
-                        dt, rejected = dt / 2, rejected + 1
-                        continue
-                    limit = max(step.max_dT_K / ctl.max_dT_K, step.max_dX / ctl.max_dX)
-                    if limit > 2.0 and dt / 2 >= ctl.dt_min_s:
-                        dt, rejected = dt / 2, rejected + 1
-                        continue
-                    with self.timer("mechanics_s"):
-                        converged = self._mechanics_step(step.T_qp, step.phase_state.fractions)
-                    if not converged:
-                        if dt / 2 < ctl.dt_min_s:
-                            raise SolverError(f"the stress solver did not converge at t = {self.thermal.time_s:.4g} s "
-                                              f"even with the smallest step {dt:.3g} s")
-                        log.warning("stress Newton did not converge (dt = %.3g s at t = %.4g s); cutting the step",
-                                    dt, self.thermal.time_s)
-                        dt, rejected = dt / 2, rejected + 1
-                        continue
-                    self.thermal.commit(step)
-                    steps += 1
-                    energy_out += step.heat_out_J
-                    latent += step.latent_J
-                    times.append(self.thermal.time_s)
-                    probe_rows.append(self.probe_temperatures())
-                    probes.write(self.thermal.time_s, probe_rows[-1])
-                    # a frame per 1/frames of the whole cooling, measured by the mean nodal change (the
-                    # max-norm counted the fast surface swings: ~260 frames for 40 requested)
-                    if float(np.mean(np.abs(self.thermal.T - self._last_frame_T))) >= frame_dT:
-                        with self.timer("output_s"):
-                            vtk.write(self.thermal.time_s, self.nodal_fields())
-                        self._last_frame_T = self.thermal.T.copy()
-                    bar.update(round(step.dt_s, 3))
-                    grow = ctl.growth if limit < 1e-12 else min(ctl.growth, 0.9 / limit)
-                    dt = float(np.clip(dt * grow, ctl.dt_min_s, ctl.dt_max_s))
-                bar.close()
-            self._equilibrate_at_room_temperature()
+            with _terminate_as_interrupt():
+                self._stages(vtk, probes)
+                end_state = self._end_state()
+        except (KeyboardInterrupt, RunInterrupted) as exc:
+            status, error = "interrupted", str(exc) or "interrupted (Ctrl-C)"
+            end_state = self._end_state(closing_step=False)
+            log.error("run interrupted at t = %.4g s", self.thermal.time_s)
         except QuenchsimError as exc:
             status, error = "failed", str(exc)
+            end_state = self._end_state(closing_step=False)
             log.error("run stopped at t = %.4g s: %s", self.thermal.time_s, exc)
         finally:
             probes.close()
         self.writer.final_3d(vtk.write(self.thermal.time_s, self.nodal_fields()))
-        time_arr = np.asarray(times)
-        probe_T = {n: np.array([row[i] for row in probe_rows]) for i, n in enumerate(self.probe_names)}
+        time_arr = np.asarray(self.times)
+        probe_T = {n: np.array([row[i] for row in self.probe_rows]) for i, n in enumerate(self.probe_names)}
         try:
-            summary = self.summary(time_arr, probe_T, wall0, steps, rejected, energy_out, latent)
+            summary = self.summary(time_arr, probe_T, wall0)
         except Exception as exc:  # keep what was computed: record the failure, then re-raise
             self.writer.summary({"case": case.name, "condition": case.condition, "status": "failed",
                                  "error": f"post-processing: {exc!r}"})
             raise
+        summary["end_state"] = end_state
         summary["status"] = status
         if error:
             summary["error"] = error
             summary["stopped_at_s"] = self.thermal.time_s
         self.writer.summary(summary)
+        if status == "interrupted":
+            raise RunInterrupted(f"run interrupted at t = {self.thermal.time_s:.4g} s; results up to there are in "
+                                 f"{self.out} (summary.json status 'interrupted')")
         if error:
             raise SolverError(f"{error} (results up to t = {self.thermal.time_s:.4g} s are in {self.out})")
         return RunResult(self.out, summary, time_arr, probe_T)
+
+    def _stages(self, vtk: Any, probes: Any) -> None:
+        """March the quench and the air stage with adaptive steps (see the module docstring)."""
+        case, ctl, counts = self.case, self.case.time, self.counts
+        dt = ctl.dt_initial_s
+        frame_dT = (self.T_aust - self.T_room) / case.output.frames
+        stages = [("quench", case.quench.time_s, -math.inf), ("air", case.air.time_s, case.air.until_max_C)]
+        for stage, duration, until in stages:
+            with self.timer("bath_htc_s"):
+                htc = stage_htc(case, stage, self.points)
+            t_end = self.thermal.time_s + duration
+            bar = tqdm(total=round(duration, 3), desc=f"{case.name}[{case.condition}] {stage}", unit="s",
+                       bar_format=PROGRESS_FORMAT, disable=not self.progress, leave=False)
+            while self.thermal.time_s < t_end - 1e-9 and float(np.max(self.thermal.T)) > until:
+                dt = min(dt, t_end - self.thermal.time_s)
+                try:
+                    with self.timer("thermal_metallurgy_s"):
+                        step = self.thermal.try_step(dt, htc)
+                except SolverError as exc:
+                    if dt / 2 < ctl.dt_min_s:
+                        raise
+                    log.warning("%s; cutting the step to %.3g s", exc, dt / 2)
+                    dt, counts["rejected"] = dt / 2, counts["rejected"] + 1
+                    continue
+                limit = max(step.max_dT_K / ctl.max_dT_K, step.max_dX / ctl.max_dX)
+                if limit > 2.0 and dt / 2 >= ctl.dt_min_s:
+                    dt, counts["rejected"] = dt / 2, counts["rejected"] + 1
+                    continue
+                with self.timer("mechanics_s"):
+                    converged = self._mechanics_step(step.T_qp, step.phase_state.fractions)
+                if not converged:
+                    if dt / 2 < ctl.dt_min_s:
+                        raise SolverError(f"the stress solver did not converge at t = {self.thermal.time_s:.4g} s "
+                                          f"even with the smallest step {dt:.3g} s")
+                    log.warning("stress Newton did not converge (dt = %.3g s at t = %.4g s); cutting the step",
+                                dt, self.thermal.time_s)
+                    dt, counts["rejected"] = dt / 2, counts["rejected"] + 1
+                    continue
+                self.thermal.commit(step)
+                counts["steps"] += 1
+                counts["heat_out_J"] += step.heat_out_J
+                counts["latent_J"] += step.latent_J
+                self.times.append(self.thermal.time_s)
+                self.probe_rows.append(self.probe_temperatures())
+                probes.write(self.thermal.time_s, self.probe_rows[-1])
+                # a frame per 1/frames of the whole cooling, measured by the mean nodal change (the
+                # max-norm counted the fast surface swings: ~260 frames for 40 requested)
+                if float(np.mean(np.abs(self.thermal.T - self._last_frame_T))) >= frame_dT:
+                    with self.timer("output_s"):
+                        vtk.write(self.thermal.time_s, self.nodal_fields())
+                    self._last_frame_T = self.thermal.T.copy()
+                bar.update(round(step.dt_s, 3))
+                grow = ctl.growth if limit < 1e-12 else min(ctl.growth, 0.9 / limit)
+                dt = float(np.clip(dt * grow, ctl.dt_min_s, ctl.dt_max_s))
+            bar.close()
+
+    def _end_state(self, closing_step: bool = True) -> dict[str, Any]:
+        """Close the run at room temperature when the part has cooled to within ``air.until_max_C``;
+        otherwise (a stage that ended early, a failed or interrupted run) report the hot state as it is."""
+        T_max, T_min = float(np.max(self.thermal.T)), float(np.min(self.thermal.T))
+        cooled = T_max <= self.case.air.until_max_C + 1e-9
+        if closing_step and cooled:
+            self._equilibrate_at_room_temperature()
+            return {"at_room_temperature": True, "time_s": float(self.thermal.time_s),
+                    "max_temperature_before_closing_C": T_max}
+        note = ("the part is still hot: temperatures, phases, hardness, dimensions and stresses are those at the "
+                "end of the last stage, not of the cooled part")
+        if closing_step:
+            log.warning("the air stage ended at t = %.4g s with the part at up to %.0f C (air.until_max_C = %g C): %s",
+                        self.thermal.time_s, T_max, self.case.air.until_max_C, note)
+        return {"at_room_temperature": False, "time_s": float(self.thermal.time_s), "max_temperature_C": T_max,
+                "min_temperature_C": T_min, "note": note}
 
     @contextlib.contextmanager
     def timer(self, key: str) -> Iterator[None]:
@@ -277,8 +311,8 @@ class QuenchRun:
         return bool(info.converged)
 
     def _equilibrate_at_room_temperature(self) -> None:
-        """Final state: the whole ring at room temperature (the air stage ends when the hottest point
-        is below air.until_max_C; the last few kelvin are one step, with the martensite they still form).
+        """Final state: the whole ring at room temperature (the air stage ended with the hottest point below
+        air.until_max_C; the last few kelvin are one step, with the martensite they still form).
 
         The step takes no time for the diffusional reactions (dt = 0): its length is not modelled, and an
         assumed hour at 20-40 C had let the peer's bainite law, extrapolated far below its 240-440 C data,
@@ -302,8 +336,7 @@ class QuenchRun:
         return {"dimensions_mm": mechanics.dimension_change(before, after),
                 "residual_stress_MPa": residual_stress_summary(hoop, axial)}
 
-    def summary(self, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wall0: float, steps: int,
-                rejected: int, energy_out: float, latent: float) -> dict[str, Any]:
+    def summary(self, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wall0: float) -> dict[str, Any]:
         fields = self.nodal_fields()
         out: dict[str, Any] = {"case": self.case.name, "condition": self.case.condition}
         out["probes"] = probe_times(time_s, probe_T)
@@ -312,8 +345,26 @@ class QuenchRun:
         out["phases_final"] = phase_statistics(self.thermal.fractions(), self.fe.r_dx)
         if self.mech is not None:
             out.update(self.mechanics_summary())
-        out["energy"] = {"heat_extracted_J": energy_out, "latent_released_J": latent}
-        out["solver"] = {"wall_time_s": time.perf_counter() - wall0, "stage_time_s": dict(self.timings), "steps": steps,
-                         "rejected_steps": rejected, "dofs": int(self.fe.n_dofs),
+        out["energy"] = {"heat_extracted_J": self.counts["heat_out_J"], "latent_released_J": self.counts["latent_J"]}
+        out["solver"] = {"wall_time_s": time.perf_counter() - wall0, "stage_time_s": dict(self.timings),
+                         "steps": self.counts["steps"], "rejected_steps": self.counts["rejected"], "dofs": int(self.fe.n_dofs),
                          "elements": int(self.section.n_elements), "end_time_s": float(self.thermal.time_s)}
         return out
+
+
+@contextlib.contextmanager
+def _terminate_as_interrupt() -> Iterator[None]:
+    """Turn SIGTERM (a batch scheduler's time limit) into :class:`RunInterrupted` while the stages run, so the
+    run writes its summary with status "interrupted" (only in the main thread, where signals are delivered)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def handler(signum: int, frame: Any) -> None:
+        raise RunInterrupted(f"interrupted by signal {signal.Signals(signum).name}")
+
+    previous = signal.signal(signal.SIGTERM, handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)

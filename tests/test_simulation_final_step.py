@@ -1,6 +1,18 @@
-"""The closing step of a run (the whole part set to room temperature) adds only athermal martensite."""
+"""The end of a run: the closing step to room temperature (only once the part has cooled to the air
+stage's tolerance, and then only athermal martensite), the honest hot state of a stage that ended early,
+and interruption by SIGTERM / Ctrl-C (status "interrupted", no traceback)."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
 
 import numpy as np
+import pytest
+import tomli_w
 
 from quenchsim.case import case_from_dict
 from quenchsim.pipeline import QuenchRun
@@ -34,9 +46,57 @@ def test_closing_step_forms_martensite_but_no_diffusional_product(tmp_path, monk
         seen["after"] = run.thermal.fractions()
 
     monkeypatch.setattr(QuenchRun, "_equilibrate_at_room_temperature", recorded)
-    QuenchRun(case_from_dict(warm_ring()), tmp_path, progress=False).run()
+    case = warm_ring()
+    case["air"]["until_max_C"] = 260.0   # the user's tolerance: close the run once the part is below 260 C
+    QuenchRun(case_from_dict(case), tmp_path, progress=False).run()
     before, after = seen["before"], seen["after"]
     assert seen["T_C"].max() > 150.0 and seen["T_C"].min() < 229.0   # warm, partly below Ms: KM still to go
     for phase in ("bainite", "pearlite"):
         assert np.array_equal(after[phase], before[phase])
     assert after["martensite"].mean() > before["martensite"].mean() + 0.2
+
+
+def test_a_stage_that_ends_hot_reports_the_hot_state_without_martensite_above_Ms(tmp_path):
+    """A 3 s quench and a 1 s air stage end with the core still above Ms, far above air.until_max_C: no closing
+    step, the summary says so, and no martensite exists where the part is still above Ms."""
+    case = warm_ring()
+    case["quench"]["time_s"] = 3.0
+    run = QuenchRun(case_from_dict(case), tmp_path, progress=False)
+    result = run.run()
+    end = result.summary["end_state"]
+    assert end["at_room_temperature"] is False
+    assert end["max_temperature_C"] > 150.0 and "still hot" in end["note"]
+    hot = run.thermal.T_qp > run.kin.Ms_C + 1.0
+    assert hot.any()
+    assert float(run.thermal.fractions()["martensite"][hot].max()) < 1e-12
+    assert json.loads((tmp_path / "summary.json").read_text())["end_state"]["at_room_temperature"] is False
+
+
+def _slow_ring_case(path: Path) -> Path:
+    case = warm_ring()
+    case["air"] = {"time_s": 5000.0, "temperature_C": 20.0, "until_max_C": 21.0, "htc_model": "table",
+                   "htc_table": {"T_C": [0.0, 900.0], "h_W_m2K": [2.0, 2.0], "ambient_C": 20.0}}
+    case["time"] = {"dt_max_s": 0.05}
+    path.write_text(tomli_w.dumps(case))
+    return path
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
+def test_a_signal_leaves_status_interrupted_and_no_traceback(tmp_path, sig):
+    case = _slow_ring_case(tmp_path / "slow.toml")
+    out = tmp_path / "run"
+    proc = subprocess.Popen([sys.executable, "-m", "quenchsim.cli", "run", str(case), "--out", str(out), "--quiet"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=Path(__file__).parents[1],
+                            env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[1])})
+    deadline = time.time() + 120
+    while time.time() < deadline and not (out / "probes.csv").is_file():
+        time.sleep(0.2)
+    time.sleep(1.5)                       # well into the quench stage
+    proc.send_signal(sig)
+    stdout, stderr = proc.communicate(timeout=120)
+    summary = json.loads((out / "summary.json").read_text())
+    assert proc.returncode == 130, stderr
+    assert "Traceback" not in stderr and len(stderr.strip().splitlines()) <= 3, stderr
+    assert summary["status"] == "interrupted"
+    assert 0.0 < summary["stopped_at_s"] < 5000.0
+    assert summary["end_state"]["at_room_temperature"] is False
