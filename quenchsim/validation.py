@@ -255,11 +255,7 @@ class Study:
     @property
     def module(self) -> ModuleType:
         if self._module is None:
-            spec = importlib.util.spec_from_file_location(f"quenchsim_validation_{self.slug}",
-                                                          self.folder / "study.py")
-            assert spec is not None and spec.loader is not None
-            module = importlib.util.module_from_spec(spec)
-            spec.loader.exec_module(module)
+            module = study_module(self.key, self.folder.parents[1])
             for attr in ("TITLE", "SLOW", "run"):
                 if not hasattr(module, attr):
                     raise InputError(str(self.folder / "study.py"), attr, "a study defines TITLE, SLOW and run(workdir)")
@@ -281,6 +277,18 @@ class Study:
 
     def slow(self) -> bool:
         return bool(self._constant("SLOW", True))
+
+
+@functools.lru_cache(maxsize=None)
+def study_module(key: str, root: Path = VALIDATION_ROOT) -> ModuleType:
+    """The study.py of ``area/study`` under ``root``, loaded once (a study uses another's helpers or runs)."""
+    path = Path(root) / key / "study.py"
+    spec = importlib.util.spec_from_file_location(f"quenchsim_validation_{key.replace('/', '_')}", path)
+    if spec is None or spec.loader is None or not path.is_file():
+        raise InputError("study", key, f"no {path}")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def discover(root: Path = VALIDATION_ROOT) -> list[Study]:
