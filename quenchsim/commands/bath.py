@@ -21,7 +21,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from quenchsim.report.bath import TABLE_T_C, condition_htc, plot_htc, plot_velocity, segment_table
+    from quenchsim.bath.plots import plot_htc, plot_velocity
+    from quenchsim.bath.segments import TABLE_T_C, condition_htc, segment_table
 
     if not args.spacing_mm > 0:
         raise InputError("--spacing-mm", args.spacing_mm, "must be > 0")
