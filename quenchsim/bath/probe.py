@@ -29,7 +29,7 @@ class SteadyHTC:
     curves: BoundaryHTC
 
     @property
-    def ambient_C(self) -> float:
+    def ambient_C(self) -> np.ndarray:
         return self.curves.ambient_C
 
     def __call__(self, T_surface_C: np.ndarray, time_s: float) -> np.ndarray:
