@@ -23,7 +23,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "bath": ("quenchsim.commands.bath", "show the bath model: local velocities and HTC(T) per segment"),
     "sweep": ("quenchsim.commands.sweep", "run a parameter sweep on Dask distributed"),
     "report": ("quenchsim.commands.report", "HTML/Markdown report of run or sweep directories"),
-    "validate": ("quenchsim.commands.validate", "regenerate reports/ (validation + benchmarks)"),
+    "validate": ("quenchsim.commands.validate", "run the studies of validation/, write reports/, exit 1 on a missed target"),
     "view": ("quenchsim.commands.view", "off-screen render of a run's final field to PNG"),
 }
 

@@ -1,4 +1,4 @@
-"""`quenchsim validate`: every report module run, nothing skipped silently, reports/ replaced only when all worked."""
+"""`quenchsim validate`: targets as data, one runner, pages from metrics + targets, exit 1 on a missed target."""
 
 from __future__ import annotations
 
@@ -9,126 +9,142 @@ import textwrap
 
 import pytest
 
-from quenchsim.commands.validate import REPORT_MODULES, regenerate
+from quenchsim import validation as v
 from quenchsim.errors import InputError
 
-GOOD = '''
-from pathlib import Path
+STUDY = '''
+TITLE = "A toy study"
+SLOW = False
+CALLS = []
 
-def write(reports_dir: Path) -> list[Path]:
-    page = reports_dir / "good.md"
-    page.write_text("# A good page\\n\\n![plot](good.png)\\n")
-    (reports_dir / "good.png").write_bytes(b"png")
-    return [page]
+def run(workdir):
+    CALLS.append(1)
+    (workdir / "toy.png").write_bytes(b"png")
+    return {"ratio": 0.7, "table": {"a": 2.0}, "page_note": "computed"}
+
+def page(metrics):
+    return f"Body with ratio {metrics['ratio']:.2f}."
 '''
-BAD = '''
-def write(reports_dir):
-    (reports_dir / "half.md").write_text("# half")
-    raise RuntimeError("model diverged")
-'''
+TARGETS = '''
+[[targets]]
+metric = "ratio"
+value = 0.75
+tolerance = 0.08
+source = "a published ratio"
 
-CACHED = '''
-from pathlib import Path
+[[targets]]
+metric = "table.a"
+value = 1.0
+rel_tolerance = 0.1
+source = "a measured value"
+status = "open"
+reason = "known to be missed: model too simple"
 
-def write(reports_dir: Path) -> list[Path]:
-    page, cache = reports_dir / "cached.md", reports_dir / "cached.json"
-    page.write_text("# Uses a cache\\n")
-    if not cache.is_file():
-        cache.write_text("{}")
-    return [page, cache]
+[[targets]]
+metric = "table.a"
+value = 2.1
+status = "reference"
+source = "another author's value"
 '''
 
 
 @pytest.fixture()
-def package(tmp_path, monkeypatch):
-    pkg = tmp_path / "fakereports"
-    pkg.mkdir()
-    (pkg / "__init__.py").write_text("")
-    (pkg / "good.py").write_text(textwrap.dedent(GOOD))
-    (pkg / "bad.py").write_text(textwrap.dedent(BAD))
-    (pkg / "nowrite.py").write_text("X = 1\n")
-    (pkg / "cached.py").write_text(textwrap.dedent(CACHED))
-    monkeypatch.syspath_prepend(str(tmp_path))
-    return "fakereports"
+def root(tmp_path):
+    folder = tmp_path / "validation" / "toy" / "one"
+    folder.mkdir(parents=True)
+    (folder / "study.py").write_text(textwrap.dedent(STUDY))
+    (folder / "targets.toml").write_text(textwrap.dedent(TARGETS))
+    v.study_module.cache_clear()
+    return tmp_path / "validation"
 
 
-def test_full_run_replaces_the_folder_and_indexes_every_module(tmp_path, package):
+def test_targets_are_checked_met_open_reference(root):
+    (study,) = v.discover(root)
+    assert study.key == "toy/one" and study.title() == "A toy study" and not study.slow()
+    verdicts = v.evaluate(study.targets, {"ratio": 0.7, "table": {"a": 2.0}})
+    assert [x.state for x in verdicts] == ["met", "open", "reference"]
+    assert [x.state for x in v.evaluate(study.targets, {"ratio": 0.9, "table": {"a": 1.05}})] == \
+        ["missed", "open, met", "reference"]
+    assert v.evaluate(study.targets, {})[0].state == "absent"
+
+
+def test_run_writes_page_metrics_and_plots_and_reuses_the_cache(root, tmp_path, monkeypatch):
+    monkeypatch.setattr(v, "VALIDATION_ROOT", root)
+    (study,) = v.discover(root)
+    reports, runs = tmp_path / "reports", tmp_path / "runs"
+    first = v.run_study(study, reports, runs)
+    assert first.status == "ran", first.error
+    page = (reports / "toy_one.md").read_text()
+    assert page.startswith("# A toy study") and "Body with ratio 0.70." in page
+    assert "| ratio | 0.7 | 0.75 +- 0.08 | met |" in page and "open (known miss)" in page and "model too simple" in page
+    assert (reports / "toy.png").read_bytes() == b"png"
+    record = json.loads((reports / "toy_one.json").read_text())
+    assert record["metrics"]["ratio"] == 0.7 and record["fingerprint"] == v.study_fingerprint(study)
+    assert v.run_study(study, reports, runs).status == "cached" and len(study.module.CALLS) == 1
+    monkeypatch.setattr(v, "code_fingerprint", lambda: "another version")
+    assert v.run_study(study, reports, runs).status == "ran" and len(study.module.CALLS) == 2
+    # one open target: a miss for the exit code, listed apart from the real misses
+    assert v.exit_code([first]) == 1
+    lines = v.summary_lines([first])
+    assert lines[0] == "OPEN (known misses):" and "MISSED:" not in lines
+
+
+def test_check_evaluates_cached_metrics_and_counts_a_missing_study(root, tmp_path):
+    (study,) = v.discover(root)
     reports = tmp_path / "reports"
+    assert v.check_study(study, reports).status == "not run"
+    assert v.exit_code([v.check_study(study, reports)]) == 1
     reports.mkdir()
-    (reports / "stale.md").write_text("# from an old run")
-    results, stage = regenerate(reports, modules=("good", "absent"), package=package, echo=False)
-    assert stage is None
-    assert {r.name: r.status for r in results} == {"good": "ok", "absent": "missing"}
-    assert sorted(p.name for p in reports.iterdir()) == ["README.md", "good.md", "good.png", "index.json"]
-    readme = (reports / "README.md").read_text()
-    assert "[A good page](good.md)" in readme and "fakereports.absent" in readme and "missing" in readme
-    index = json.loads((reports / "index.json").read_text())
-    assert index[0]["files"] == ["good.md", "good.png"]        # a file written but not returned is listed too
-    assert not list(tmp_path.glob(".reports-new-*"))
+    (reports / "toy_one.json").write_text(json.dumps({"fingerprint": "old", "metrics": {"ratio": 0.9, "table": {"a": 1.0}}}))
+    r = v.check_study(study, reports)
+    assert r.stale and [x.state for x in r.verdicts] == ["missed", "open, met", "reference"]
+    assert any(line.startswith("MISSED:") for line in v.summary_lines([r]))
 
 
-def test_a_returned_file_left_unchanged_is_still_indexed_with_a_relative_reports_dir(tmp_path, package, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    for _ in range(2):  # the second run finds its cache and does not rewrite it
-        results, _ = regenerate("reports", only=["cached"], modules=("cached",), package=package, echo=False)
-        assert results[0].files == ["cached.json", "cached.md"]
+@pytest.mark.parametrize("text, field", [
+    ('[[targets]]\nmetric = "x"\nvalue = 1.0\ntolerance = 0.1\n', "source"),
+    ('[[targets]]\nmetric = "x"\nvalue = 1.0\nsource = "s"\n', "targets[0]"),
+    ('[[targets]]\nmetric = "x"\nvalue = 1.0\ntolerance = 0.1\nsource = "s"\nstatus = "open"\n', "reason"),
+    ('[[targets]]\nmetric = "x"\nmin = 1.0\nsource = "s"\ncolour = "red"\n', "unknown keys"),
+    ('[[targets]]\nmetric = "x"\nvalue = 1.0\ntolerance = 0.1\nrel_tolerance = 0.1\nsource = "s"\n', "targets[0]"),
+])
+def test_a_bad_targets_file_is_a_one_line_error(tmp_path, text, field):
+    path = tmp_path / "targets.toml"
+    path.write_text(text)
+    with pytest.raises(InputError, match=field.replace("[", r"\[")):
+        v.load_targets(path)
 
 
-def test_a_failing_module_leaves_the_committed_folder_untouched(tmp_path, package):
-    reports = tmp_path / "reports"
-    reports.mkdir()
-    (reports / "committed.md").write_text("# committed")
-    results, stage = regenerate(reports, modules=("good", "bad", "nowrite"), package=package, echo=False)
-    status = {r.name: r.status for r in results}
-    assert status == {"good": "ok", "bad": "failed", "nowrite": "failed"}
-    assert "model diverged" in next(r.error for r in results if r.name == "bad")
-    assert [p.name for p in reports.iterdir()] == ["committed.md"]
-    assert stage is not None and (stage / "good.md").is_file() and "model diverged" in (stage / "README.md").read_text()
-
-
-def test_only_rewrites_the_named_module_and_keeps_the_rest(tmp_path, package):
-    reports = tmp_path / "reports"
-    regenerate(reports, modules=("good", "absent"), package=package, echo=False)
-    (reports / "good.md").write_text("# edited by hand")
-    (reports / "other.md").write_text("# another module's page")
-    results, _ = regenerate(reports, only=["good"], modules=("good", "absent"), package=package, echo=False)
-    assert [r.status for r in results] == ["ok"]
-    assert (reports / "good.md").read_text().startswith("# A good page")
-    assert (reports / "other.md").is_file()
-    readme = (reports / "README.md").read_text()
-    assert "fakereports.absent" in readme and "[A good page](good.md)" in readme
+def test_select_and_the_cli_reject_an_unknown_study(root, tmp_path):
+    studies = v.discover(root)
+    assert v.select(studies, ["toy"]) == studies and v.select(studies, ["one"]) == studies
     with pytest.raises(InputError, match="--only"):
-        regenerate(reports, only=["nonsense"], modules=("good",), package=package, echo=False)
-
-
-def test_the_cli_lists_the_known_modules_and_rejects_an_unknown_one(tmp_path):
-    assert {"validation", "bench", "cct", "sweep_bench"} <= set(REPORT_MODULES)
+        v.select(studies, ["nonsense"])
     res = subprocess.run([sys.executable, "-m", "quenchsim.cli", "validate", "--reports", str(tmp_path / "r"),
                           "--only", "nonsense"], capture_output=True, text=True, timeout=120)
-    assert res.returncode == 2 and "--only" in res.stderr and "sweep_bench" in res.stderr
+    assert res.returncode == 2 and "--only" in res.stderr and "bearings/hertz" in res.stderr
 
 
 def test_cached_run_is_reused_only_with_the_same_inputs_and_code(tmp_path, monkeypatch):
-    """A finished validation run is reused; a changed case or a changed code fingerprint reruns it."""
+    """A finished quench run is reused; a changed case or a changed code fingerprint reruns it."""
     from quenchsim.case import case_from_dict
-    from quenchsim.report import validation
     from tests.test_sweep import small_case
 
     calls = []
 
     def fake_run(case, out, progress=True):
-        calls.append(case.data["quench"]["time_s"])
+        calls.append(case.quench.time_s)
         out.mkdir(parents=True, exist_ok=True)
-        (out / "case.toml").write_text(validation._toml(case))
+        (out / "case.toml").write_text(v._toml(case))
         (out / "summary.json").write_text('{"status": "ok"}')
 
-    monkeypatch.setattr("quenchsim.simulation.run_case", fake_run)
+    monkeypatch.setattr("quenchsim.pipeline.run", fake_run)
     case = case_from_dict(small_case(), None, {})
-    validation.cached_run(case, tmp_path / "r")
-    validation.cached_run(case, tmp_path / "r")
+    v.cached_run(case, tmp_path / "r")
+    v.cached_run(case, tmp_path / "r")
     assert len(calls) == 1
-    validation.cached_run(case_from_dict(small_case(), None, {"quench.time_s": 21.0}), tmp_path / "r")
+    v.cached_run(case_from_dict(small_case(), None, {"quench.time_s": 21.0}), tmp_path / "r")
     assert len(calls) == 2
-    monkeypatch.setattr(validation, "code_fingerprint", lambda: "another version")
-    validation.cached_run(case_from_dict(small_case(), None, {"quench.time_s": 21.0}), tmp_path / "r")
+    monkeypatch.setattr(v, "code_fingerprint", lambda: "another version")
+    v.cached_run(case_from_dict(small_case(), None, {"quench.time_s": 21.0}), tmp_path / "r")
     assert len(calls) == 3

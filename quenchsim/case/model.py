@@ -136,7 +136,8 @@ class Case:
         return {"name": self.name, "condition": self.condition or "", **self.data}
 
     def with_overrides(self, overrides: Mapping[str, Any]) -> "Case":
-        """A new case with dotted-path ``overrides`` applied to this one's table, checked again."""
+        """A new case with dotted-path ``overrides`` applied to this one's table (a value None removes the
+        key, so its default applies), checked again."""
         from quenchsim.case.parse import build_case
 
         return build_case(self.data, self.name, self.condition, self.path, overrides)

@@ -67,6 +67,16 @@ def set_dotted(data: dict[str, Any], dotted: str, value: Any) -> None:
     node[keys[-1]] = value
 
 
+def _unset_dotted(data: dict[str, Any], dotted: str) -> None:
+    """Remove the key at ``dotted`` (if present), so that its default applies."""
+    *tables, key = dotted.split(".")
+    node: Any = data
+    for name in tables:
+        node = node.get(name) if isinstance(node, dict) else None
+    if isinstance(node, dict):
+        node.pop(key, None)
+
+
 def _number(table: Mapping[str, Any], key: str, field: str, *, positive: bool = False,
             minimum: float | None = None, maximum: float | None = None) -> float:
     if key not in table:
@@ -129,7 +139,10 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
     """Parse the merged table ``data`` (plus dotted ``overrides``) into a checked :class:`Case`."""
     data = deep_merge(data, {})
     for dotted, value in (overrides or {}).items():
-        set_dotted(data, dotted, value)
+        if value is None:
+            _unset_dotted(data, dotted)
+        else:
+            set_dotted(data, dotted, value)
     for key in data:
         require(key in TABLE_KEYS[""], key, data[key], f"unknown table or key; a case takes {', '.join(TABLE_KEYS[''])}")
 

@@ -21,11 +21,16 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from quenchsim.report.bath import TABLE_T_C, condition_htc, plot_htc, plot_velocity, segment_table
+    from quenchsim.bath.plots import plot_htc, plot_velocity
+    from quenchsim.bath.segments import TABLE_T_C, outline_htc, segment_table
+    from quenchsim.case import load_case
 
     if not args.spacing_mm > 0:
         raise InputError("--spacing-mm", args.spacing_mm, "must be > 0")
-    case, points, htc = condition_htc(args.case, args.condition, args.spacing_mm * 1e-3)
+    case = load_case(args.case, args.condition)
+    if case.quench.bath is None:
+        raise InputError("quench.htc_model", case.quench.htc_model, "must be 'bath' for `quenchsim bath`")
+    points, htc = outline_htc(case.profile, case.quench.bath, args.spacing_mm * 1e-3)
     bath = case.get("quench.bath", {})
     print(f"{case.name} condition {case.condition or '-'}: {bath.get('quenchant')} at {bath.get('oil_temperature_C')} C, "
           f"ID jets {bath.get('id_jet_speed_mm_s', '-')} mm/s, OD jets {bath.get('od_jet_speed_mm_s', '-')} mm/s, "

@@ -48,7 +48,7 @@ def run(args: argparse.Namespace) -> int:
     kin = load_kinetics(material, args.T_aust)
     d = cct_diagram(kin, rates, args.T_aust)
     if args.png:
-        from quenchsim.report.cct import plot_cct
+        from quenchsim.metallurgy.plots import plot_cct
 
         args.png.parent.mkdir(parents=True, exist_ok=True)
         plot_cct(cct_diagram(kin, np.logspace(-1, 3, 33), args.T_aust), kin, args.png)

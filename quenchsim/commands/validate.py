@@ -1,187 +1,69 @@
-"""`quenchsim validate [--reports DIR] [--only NAME ...]`: regenerate reports/ from scratch.
+"""`quenchsim validate [--list | --check] [--only NAME ...] [--fast] [--force]`: run the studies of validation/.
 
-Calls ``write(reports_dir) -> list[Path]`` of every report module in :data:`REPORT_MODULES` (imported
-only when run) and writes ``README.md``, an index of the pages, plus ``index.json`` (what each
-module wrote, how long it took, or why it did not). Nothing is skipped silently: a module that is
-not in this checkout is listed as missing, one that raises as failed.
-
-Without ``--only`` the pages are written into a fresh staging directory next to DIR and replace
-DIR's contents only when no module failed, so a broken module never leaves a half-empty reports/
-(the staging directory is kept for inspection and its path printed). With ``--only`` the named
-modules rewrite their own pages in DIR and the index is updated.
+Each study (validation/<area>/<study>/: targets.toml + study.py, contract in validation/README.md) is run
+unless its metrics in ``<reports>/<area>_<study>.json`` carry the current fingerprint (code, data,
+cases and the study folder: an interrupted run resumes where it stopped); its page is written as soon as
+it finishes. The runner prints the targets that are missed and the open ones (known misses, with their
+reasons) and exits 1 while any target is missed -- open ones included: an open target is a miss that is
+declared, not a pass. ``--check`` does the same from the cached metrics without running anything
+(a study without cached metrics counts as a miss; stale metrics are evaluated and flagged).
 """
 
 from __future__ import annotations
 
 import argparse
-import datetime
-import importlib
-import json
-import shutil
-import tempfile
-import time
-import traceback
-from dataclasses import asdict, dataclass, field
 from pathlib import Path
-
-REPORT_MODULES = ("validation", "sensitivity", "bench", "cct", "bath", "quenchsim.mechanics.report", "bearings_basics",
-                  "bearings_runout", "bearings_gas_journal", "bearings_big_end", "sweep_bench")
-"""Modules with a ``write(reports_dir)``, in the order of the index: names in quenchsim.report, or full
-dotted module paths."""
-PACKAGE = "quenchsim.report"
-INDEX_JSON = "index.json"
-
-
-@dataclass
-class ModuleResult:
-    """What one report module did: status ok / missing / failed, the files it wrote, its wall time."""
-
-    name: str
-    status: str
-    files: list[str] = field(default_factory=list)
-    seconds: float = 0.0
-    error: str = ""
-
-
-def _snapshot(directory: Path) -> dict[str, int]:
-    return {p.relative_to(directory).as_posix(): p.stat().st_mtime_ns for p in directory.rglob("*") if p.is_file()}
-
-
-def run_module(name: str, reports_dir: Path, package: str = PACKAGE) -> ModuleResult:
-    """Import ``package.name`` (or ``name`` when it is a dotted path) and call its ``write(reports_dir)``;
-    never raises."""
-    full = name if "." in name else f"{package}.{name}"
-    try:
-        module = importlib.import_module(full)
-    except ModuleNotFoundError as exc:
-        if exc.name == full:
-            return ModuleResult(name, "missing", error=f"{full} is not in this checkout")
-        return ModuleResult(name, "failed", error=f"import failed: {type(exc).__name__}: {exc}")
-    except Exception as exc:  # noqa: BLE001 -- any broken module is reported and the others still run
-        return ModuleResult(name, "failed", error=f"import failed: {type(exc).__name__}: {exc}")
-    write = getattr(module, "write", None)
-    if not callable(write):
-        return ModuleResult(name, "failed", error=f"{full} has no write(reports_dir)")
-    before = _snapshot(reports_dir)
-    t0 = time.perf_counter()
-    try:
-        returned = write(reports_dir) or []
-    except Exception as exc:  # noqa: BLE001
-        tb = traceback.format_exc(limit=-3)
-        return ModuleResult(name, "failed", seconds=time.perf_counter() - t0,
-                            error=f"{type(exc).__name__}: {exc}\n{tb}")
-    seconds = time.perf_counter() - t0
-    after = _snapshot(reports_dir)
-    changed = {f for f, m in after.items() if before.get(f) != m}
-    for p in returned:  # as written by the module (absolute, relative to the cwd) or relative to reports_dir
-        p = Path(p)
-        p = p if p.is_absolute() or p.is_file() else reports_dir / p
-        if p.is_file() and p.resolve().is_relative_to(reports_dir.resolve()):
-            changed.add(p.resolve().relative_to(reports_dir.resolve()).as_posix())
-    return ModuleResult(name, "ok", files=sorted(changed), seconds=seconds)
-
-
-def _title(path: Path) -> str:
-    for line in path.read_text(errors="replace").splitlines():
-        if line.startswith("# "):
-            return line[2:].strip()
-    return path.stem
-
-
-def write_index(reports_dir: Path, results: list[ModuleResult], modules: tuple[str, ...]) -> Path:
-    """README.md (the index of the pages) and index.json from the results of each module."""
-    lines = ["# quenchsim reports", "",
-             f"Generated by `quenchsim validate` ({datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC); "
-             "do not edit by hand -- run `quenchsim validate` to regenerate this folder.", "",
-             "| module | status | pages | other files | time (s) |", "|---|---|---|---|---|"]
-    by_name = {r.name: r for r in results}
-    for name in modules:
-        r = by_name.get(name)
-        if r is None:
-            continue
-        pages = [f for f in r.files if f.endswith(".md") and (reports_dir / f).is_file()]
-        links = "<br>".join(f"[{_title(reports_dir / f)}]({f})" for f in pages) or "-"
-        other = len(r.files) - len(pages)
-        status = r.status if r.status == "ok" else f"{r.status}: {r.error.splitlines()[0] if r.error else ''}"
-        lines.append(f"| `{PACKAGE}.{name}` | {status.replace('|', '/')} | {links} | {other} | {r.seconds:.1f} |")
-    lines.append("")
-    (reports_dir / INDEX_JSON).write_text(json.dumps([asdict(by_name[n]) for n in modules if n in by_name], indent=2))
-    readme = reports_dir / "README.md"
-    readme.write_text("\n".join(lines))
-    return readme
-
-
-def _previous(reports_dir: Path) -> dict[str, ModuleResult]:
-    try:
-        return {d["name"]: ModuleResult(**d) for d in json.loads((reports_dir / INDEX_JSON).read_text())}
-    except (OSError, ValueError, TypeError, KeyError):
-        return {}
-
-
-def regenerate(reports_dir: str | Path, only: list[str] | None = None, modules: tuple[str, ...] = REPORT_MODULES,
-               package: str = PACKAGE, echo: bool = True) -> tuple[list[ModuleResult], Path | None]:
-    """Regenerate ``reports_dir``; returns each module's result and the kept staging dir (None if swapped in).
-
-    ``only``: run these modules in place and keep the rest of the folder and index.
-    """
-    from quenchsim.errors import InputError
-
-    reports_dir = Path(reports_dir)
-    reports_dir.mkdir(parents=True, exist_ok=True)
-    if only:
-        unknown = [n for n in only if n not in modules]
-        if unknown:
-            raise InputError("--only", unknown, f"known report modules: {', '.join(modules)}")
-        results = []
-        for name in only:
-            results.append(run_module(name, reports_dir, package))
-            _echo(results[-1], echo)
-        merged = {**_previous(reports_dir), **{r.name: r for r in results}}
-        write_index(reports_dir, list(merged.values()), modules)
-        return results, None
-    stage = Path(tempfile.mkdtemp(prefix=f".{reports_dir.name}-new-", dir=reports_dir.parent))
-    results = []
-    for name in modules:
-        results.append(run_module(name, stage, package))
-        _echo(results[-1], echo)
-    write_index(stage, results, modules)
-    if any(r.status == "failed" for r in results):
-        return results, stage
-    for old in reports_dir.iterdir():
-        if old.is_dir():
-            shutil.rmtree(old)
-        else:
-            old.unlink()
-    for new in stage.iterdir():
-        shutil.move(str(new), reports_dir / new.name)
-    stage.rmdir()
-    return results, None
-
-
-def _echo(result: ModuleResult, echo: bool) -> None:
-    if not echo:
-        return
-    if result.status == "ok":
-        print(f"{result.name}: ok, {len(result.files)} file(s) in {result.seconds:.1f} s: {', '.join(result.files)}",
-              flush=True)
-    else:
-        print(f"{result.name}: {result.status}: {result.error}", flush=True)
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
+    parser.description = __doc__.splitlines()[0]
+    parser.epilog = ("Exit status: 0 when every target is met; 1 when any target is missed or open "
+                     "(status = \"open\" in its targets.toml: a known miss, printed separately with its reason), "
+                     "or a study failed or has no cached metrics (--check); 2 on bad input.")
     parser.add_argument("--reports", type=Path, default=Path("reports"), help="reports folder (default ./reports)")
+    parser.add_argument("--runs", type=Path, default=None,
+                        help="work folder of the studies and their quench runs (default ./runs/validation)")
     parser.add_argument("--only", nargs="+", metavar="NAME",
-                        help=f"regenerate only these modules of {PACKAGE}: {', '.join(REPORT_MODULES)}")
+                        help="run only these studies: area/study, an area, or a study name (see --list)")
+    parser.add_argument("--list", action="store_true", help="list the studies and their targets, run nothing")
+    parser.add_argument("--check", action="store_true",
+                        help="evaluate the targets on the cached metrics in --reports, run nothing")
+    parser.add_argument("--fast", action="store_true", help="only the studies that run in seconds (SLOW = False)")
+    parser.add_argument("--force", action="store_true", help="rerun even when the cached metrics are current")
+
+
+def list_lines(studies: list) -> list[str]:
+    lines = []
+    for s in studies:
+        lines.append(f"{s.key}{'' if s.slow() else '  [fast]'}: {s.title()}")
+        for t in s.targets:
+            flag = f" [{t.status}]" if t.status else ""
+            role = f" ({t.role})" if t.role != "validation" else ""
+            lines.append(f"    {t.metric}: {t.describe()}{flag}{role} -- {t.source}")
+    return lines
 
 
 def run(args: argparse.Namespace) -> int:
-    results, stage = regenerate(args.reports, args.only)
-    failed = [r.name for r in results if r.status == "failed"]
-    missing = [r.name for r in results if r.status == "missing"]
-    if missing:
-        print(f"not in this checkout (no page written): {', '.join(missing)}")
-    if stage is not None:
-        print(f"failed: {', '.join(failed)}; {args.reports} left unchanged, the new pages are in {stage}")
-        return 1
-    print(f"{args.reports / 'README.md'}" + (f" (failed: {', '.join(failed)})" if failed else ""))
-    return 1 if failed else 0
+    from quenchsim import validation as v
+
+    studies = v.discover()
+    chosen = v.select(studies, args.only)
+    if args.fast:
+        chosen = [s for s in chosen if not s.slow()]
+    if args.list:
+        print("\n".join(list_lines(chosen)))
+        return 0
+    if args.check:
+        results = [v.check_study(s, args.reports) for s in chosen]
+    else:
+        results = []
+        for s in chosen:
+            print(f"{s.key}: running ...", flush=True)
+            r = v.run_study(s, args.reports, args.runs or v.RUNS, force=args.force)
+            results.append(r)
+            state = r.status if r.status != "failed" else f"FAILED: {r.error}"
+            print(f"{s.key}: {state} ({r.seconds:.1f} s), {len(r.misses())} target(s) not met", flush=True)
+        v.write_index(args.reports, studies, {**v.previous_results(args.reports, studies),
+                                              **{r.key: r for r in results}})
+    print("\n".join(v.summary_lines(results)))
+    return v.exit_code(results)

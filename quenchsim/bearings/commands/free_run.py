@@ -59,7 +59,7 @@ def run(args: argparse.Namespace) -> dict:
         out["model_family"] = r.detail.law.family
         out["model_parameters"] = list(r.detail.law.params)  # of g = T / I_eq (rad/s^2 units)
     if args.plot is not None:
-        from quenchsim.report.bearings_basics import plot_free_run
+        from quenchsim.bearings.free_run_plots import plot_free_run
 
         out["plot"] = str(plot_free_run(t, r, args.plot))
     return out

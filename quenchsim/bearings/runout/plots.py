@@ -4,9 +4,6 @@ from __future__ import annotations
 
 import pathlib
 
-import matplotlib
-
-matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from quenchsim.bearings.runout.analysis import RunoutResult  # noqa: E402

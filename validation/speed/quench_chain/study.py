@@ -1,8 +1,7 @@
 """Benchmarks of the quench chain: cost of each stage and its growth with the mesh size.
 
-``write(reports_dir)`` takes case A condition 1 at three refinements (the mesh-convergence runs of
-the validation page, cached under ``runs/validation``; run here if missing) and writes ``bench.md``
-(+ ``bench.json``) with the wall time of each stage of the time loop. Timings are measurements on the
+Case A condition 1 at three refinements (the runs of quench/convergence, cached under ``runs/validation``;
+run here if missing): the wall time of each stage of the time loop. Timings are measurements on the
 machine that ran ``quenchsim validate``, not tests.
 """
 
@@ -13,26 +12,25 @@ import os
 import platform
 from pathlib import Path
 
-from quenchsim.report.validation import CASE_A, MESH_FACTORS, RUNS, cached_run, refined
+from quenchsim.validation import study_module
 
+TITLE = "Benchmarks of the quench chain"
+SLOW = True
 STAGES = ("bath_htc_s", "thermal_metallurgy_s", "mechanics_s", "output_s")
 
 
-def write(reports_dir: Path, runs_dir: Path = RUNS) -> list[Path]:
-    reports_dir = Path(reports_dir)
+def run(workdir: Path) -> dict:
+    convergence = study_module("quench/convergence")
     rows = []
-    for f in MESH_FACTORS:
-        name = "crb_outer_ring_1" if f == 1.0 else f"crb_outer_ring_1_mesh{f:g}"
-        run = cached_run(refined(CASE_A, "1", mesh=f), runs_dir / name)
-        s = json.loads((run / "summary.json").read_text())["solver"]
+    for f in convergence.MESH_FACTORS:
+        s = json.loads((convergence.case_a_run(workdir, mesh=f) / "summary.json").read_text())["solver"]
         rows.append({"mesh_factor": f, "elements": s["elements"], "dofs": s["dofs"], "steps": s["steps"],
                      "total_s": s["wall_time_s"], **{k: s["stage_time_s"].get(k, 0.0) for k in STAGES}})
     cols = ("mesh_factor", "elements", "dofs", "steps", "total_s", *STAGES)
-    md = ["# Benchmarks of the quench chain", "",
-          "Case A (crb_outer_ring), condition 1, full chain (bath model, thermal + metallurgy, mechanics with "
+    md = ["Case A (crb_outer_ring), condition 1, full chain (bath model, thermal + metallurgy, mechanics with "
           "plasticity and TRIP), at three mesh refinements (element sizes times the factor). Wall-clock seconds "
           f"measured on {platform.machine()} with {os.cpu_count()} cores, Python {platform.python_version()}, "
-          "by `quenchsim validate` (quenchsim/report/bench.py). `total_s` includes meshing, setup and "
+          "by `quenchsim validate`. `total_s` includes meshing, setup and "
           "post-processing; the stage columns are the time spent in each stage of the time loop "
           "(thermal_metallurgy_s is the thermal solve with the kinetics inside its iteration). The runs are the "
           "validation runs: when several ran at once on the two cores, their wall times include that sharing -- "
@@ -49,6 +47,8 @@ def write(reports_dir: Path, runs_dir: Path = RUNS) -> list[Path]:
            "thermal stage.",
            f"From the coarsest to the finest mesh the dofs grow x{fine['dofs'] / coarse['dofs']:.1f} and the run time "
            f"x{fine['total_s'] / coarse['total_s']:.1f} (time per dof per step ratio {growth:.2f}).", ""]
-    (reports_dir / "bench.md").write_text("\n".join(md) + "\n")
-    (reports_dir / "bench.json").write_text(json.dumps(rows, indent=2))
-    return [reports_dir / "bench.md", reports_dir / "bench.json"]
+    return {"rows": rows, "page_md": "\n".join(md) + "\n"}
+
+
+def page(metrics: dict) -> str:
+    return metrics["page_md"]

@@ -1,0 +1,58 @@
+"""Plots of the bath model: HTC(T_s) per boundary segment and the local oil speed along the outline.
+matplotlib is imported inside the functions only."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from quenchsim.bath.htc import BoundaryHTC
+from quenchsim.bath.segments import MAIN_SEGMENTS, perimeter_coordinate, segment_groups
+from quenchsim.geometry.boundary import BoundaryPoints
+
+
+def plot_htc(htc: BoundaryHTC, title: str, path: Path) -> Path:
+    """Segment-mean HTC(T_s) with the min-max band of the segment's points."""
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7.5, 4.5))
+    for name, idx in segment_groups(htc).items():
+        h = htc.h_W_m2K[idx]
+        line, = ax.plot(htc.T_grid_C, h.mean(axis=0), label=name, lw=1.6 if name in MAIN_SEGMENTS else 0.9)
+        ax.fill_between(htc.T_grid_C, h.min(axis=0), h.max(axis=0), color=line.get_color(), alpha=0.12)
+    ax.set_xlabel("surface temperature (C)")
+    ax.set_ylabel("HTC (W/m$^2$K)")
+    ax.set_xlim(htc.T_grid_C[0], 900.0)
+    ax.set_title(title, fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_velocity(results: dict[str, tuple[BoundaryPoints, BoundaryHTC]], title: str, path: Path) -> Path:
+    """Local oil speed along the outline (counter-clockwise from the bottom face) for several conditions."""
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8.5, 4.0))
+    spans: list[tuple[str, float, float]] = []
+    for cond, (points, htc) in results.items():
+        x, spans = perimeter_coordinate(points)
+        order = np.argsort(x)
+        ax.plot(x[order] * 1e3, htc.velocity_m_s[order], label=f"condition {cond}")
+    for name, a, b in spans:
+        ax.axvline(a * 1e3, color="0.8", lw=0.6)
+        if name in MAIN_SEGMENTS:
+            ax.text(0.5 * (a + b) * 1e3, ax.get_ylim()[1] * 0.95, name, ha="center", va="top", fontsize=8)
+    ax.set_xlabel("position along the section outline, counter-clockwise from the bottom face (mm)")
+    ax.set_ylabel("local oil speed (m/s)")
+    ax.set_title(title, fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path

@@ -1,0 +1,125 @@
+"""Case A, the cylindrical-roller-bearing outer ring (SUJ3), conditions 1-3 of cases/crb_outer_ring.toml, full
+chain: section-centre cooling relative to condition 1, hardness, dimensions against the measurement
+(targets.toml: the reference report's Table 3, its relative cooling and its own simulation).
+
+The runs are cached two levels above ``workdir`` (``runs/validation/crb_outer_ring_1``, ...) by resolved case + code fingerprint
+(:func:`quenchsim.validation.cached_run`), shared with quench/convergence, speed/quench_chain and
+quench/sensitivity, so an interrupted ``quenchsim validate`` resumes where it stopped.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from quenchsim.case import load_case
+from quenchsim.report import report_plots
+from quenchsim.results import load as load_run
+from quenchsim.validation import ROOT, cached_run
+
+TITLE = "Quench validation, case A: cylindrical-roller-bearing outer ring (SUJ3), conditions 1-3"
+SLOW = True
+CASE_A = ROOT / "cases" / "crb_outer_ring.toml"
+CONDITIONS = ("1", "2", "3")
+
+
+def run_dirs(workdir: Path) -> Path:
+    """The shared folder of the cached quench runs (``runs/validation`` by default, as before the studies)."""
+    return Path(workdir).parents[1]
+
+
+def _png(path: Path, data: bytes) -> Path:
+    path.write_bytes(data)
+    return path
+
+
+def mechanics_plots(run: Any, tag: str, title: str, workdir: Path) -> list[str]:
+    """Distortion (x10) and hoop-stress traverse PNGs of a run, with their Markdown lines."""
+    md = []
+    if run.outline is not None:
+        o = run.outline
+        _png(workdir / f"validation_{tag}_distortion.png", report_plots.distortion(
+            o["r_before_mm"], o["z_before_mm"], o["r_after_mm"], o["z_after_mm"], title, "outline.csv"))
+        md += [f"![distortion x10 {title}](validation_{tag}_distortion.png)"]
+    if run.hoop_traverse is not None:
+        h = run.hoop_traverse
+        _png(workdir / f"validation_{tag}_hoop.png", report_plots.stress_traverse(
+            h["r_mm"], {"hoop": h["hoop_MPa"], "axial": h["axial_MPa"]}, title))
+        md += [f"![residual stress traverse {title}](validation_{tag}_hoop.png)"]
+    return md + [""]
+
+
+def cooling_plot(run: Any, tag: str, title: str, workdir: Path) -> str:
+    t = run.probes["time_s"]
+    curves = {k[:-2]: v for k, v in run.probes.items() if k != "time_s"}
+    _png(workdir / f"validation_{tag}_cooling.png", report_plots.cooling_curves(t, curves, title))
+    return f"![cooling curves {title.split(', ')[-1]}](validation_{tag}_cooling.png)"
+
+
+def run(workdir: Path) -> dict[str, Any]:
+    workdir = Path(workdir)
+    runs = {c: load_run(cached_run(load_case(CASE_A, c), run_dirs(workdir) / f"crb_outer_ring_{c}")) for c in CONDITIONS}
+    A = {c: r.summary for c, r in runs.items()}
+    T_aust = load_case(CASE_A, "1").process.austenitising_temperature_C
+
+    def rate(s: dict) -> float:
+        return (T_aust - 500.0) / s["probes"]["P1"]["t_to_500C_s"]
+
+    relative = {"condition_2_t_to_500C_ratio": A["2"]["probes"]["P1"]["t_to_500C_s"] / A["1"]["probes"]["P1"]["t_to_500C_s"],
+                "condition_3_rate_to_500C_ratio": rate(A["3"]) / rate(A["1"])}
+    metrics: dict[str, Any] = {"relative_to_condition_1": relative, "conditions": {}}
+    for c in CONDITIONS:
+        s = A[c]
+        metrics["conditions"][c] = {
+            "t_to_500C_s": {p: s["probes"][p]["t_to_500C_s"] for p in s["probes"]},
+            "HRC58_depth_bore_mm": s["hardness"]["depth_mm"]["HRC58_bore_mid"],
+            "HRC58_depth_od_mm": s["hardness"]["depth_mm"]["HRC58_od_mid"],
+            "core_HRC": s["hardness"]["core_HRC"], "dimensions_mm": s.get("dimensions_mm"),
+            "phases_final": s.get("phases_final"), "residual_stress_MPa": s.get("residual_stress_MPa")}
+    plots = [cooling_plot(runs[c], f"A{c}", f"case A, condition {c}", workdir) for c in CONDITIONS]
+    _png(workdir / "validation_A1_maps.png", report_plots.field_maps(
+        runs["1"].frame, [("hardness_HRC", "hardness (HRC)", "viridis", None, None),
+                          ("martensite", "martensite", "magma", 0.0, 1.0),
+                          ("austenite", "retained austenite", "cividis", 0.0, None)],
+        "case A, condition 1: final state"))
+    metrics["plots_md"] = {"cooling": plots,
+                           "mechanics": {c: mechanics_plots(runs[c], f"A{c}", f"case A, condition {c}", workdir)
+                                         for c in CONDITIONS}}
+    return metrics
+
+
+def dims_row(label: str, d: dict[str, Any] | None) -> str:
+    """A table row: ID/OD/width after and their changes (mm)."""
+    if not d:
+        return f"| {label} | - | - | - | - | - | - |"
+    a, c = d["after"], d["change"]
+    return (f"| {label} | {a['id']:.2f} | {a['od']:.2f} | {a['width']:.2f} | {c['id']:+.3f} | {c['od']:+.3f} | "
+            f"{c['width']:+.3f} |")
+
+
+def page(metrics: dict[str, Any]) -> str:
+    rel, cond = metrics["relative_to_condition_1"], metrics["conditions"]
+    md = ["Reference: the heat-treatment report summarised in quench_cases.md (measured and published values with "
+          "their sources in targets.toml, checked in the table at the end). Verification of the solvers against closed "
+          "forms: quench/thermal_verification, mechanics/verification, materials/cct.", "",
+          "## Cooling at the section centre relative to condition 1 (`relative_to_condition_1`)", "",
+          "| quantity | computed |", "|---|---|",
+          f"| condition 2: time to 500 C at P1 / condition 1's | {rel['condition_2_t_to_500C_ratio']:.4f} |",
+          f"| condition 3: cooling rate to 500 C at P1 / condition 1's | {rel['condition_3_rate_to_500C_ratio']:.4f} |",
+          "", "| condition | " + " | ".join(f"P{i} t(500 C) s" for i in range(1, 6)) + " | HRC58 depth bore / OD mm | core HRC |",
+          "|---|" + "---|" * 7]
+    for c, s in cond.items():
+        md.append(f"| {c} | " + " | ".join(f"{s['t_to_500C_s'][f'P{i}']:.1f}" for i in range(1, 6))
+                  + f" | {s['HRC58_depth_bore_mm']:.1f} / {s['HRC58_depth_od_mm']:.1f} | {s['core_HRC']:.1f} |")
+    md.append("")
+    for line in metrics["plots_md"]["cooling"]:
+        md += [line, ""]
+    md += ["![hardness and phase maps](validation_A1_maps.png)", "",
+           "## Dimensions (mm)", "",
+           "Measured after quench and the report's own simulation: targets table at the end.", "",
+           "| | ID after | OD after | width after | ID change | OD change | width change |", "|---|---|---|---|---|---|---|"]
+    md += [dims_row(f"quenchsim condition {c}", s["dimensions_mm"]) for c, s in cond.items()]
+    md.append("")
+    for c in cond:
+        md += metrics["plots_md"]["mechanics"][c]
+    return "\n".join(md)
