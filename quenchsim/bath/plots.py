@@ -9,14 +9,14 @@ import numpy as np
 
 from quenchsim.bath.htc import BoundaryHTC
 from quenchsim.bath.segments import MAIN_SEGMENTS, perimeter_coordinate, segment_groups
+from quenchsim.figures import save, subplots
 from quenchsim.geometry.boundary import BoundaryPoints
 
 
 def plot_htc(htc: BoundaryHTC, title: str, path: Path) -> Path:
     """Segment-mean HTC(T_s) with the min-max band of the segment's points."""
-    import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(7.5, 4.5))
+    fig, ax = subplots(figsize=(7.5, 4.5))
     for name, idx in segment_groups(htc).items():
         h = htc.h_W_m2K[idx]
         line, = ax.plot(htc.T_grid_C, h.mean(axis=0), label=name, lw=1.6 if name in MAIN_SEGMENTS else 0.9)
@@ -28,16 +28,14 @@ def plot_htc(htc: BoundaryHTC, title: str, path: Path) -> Path:
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, ncol=2)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
     return path
 
 
 def plot_velocity(results: dict[str, tuple[BoundaryPoints, BoundaryHTC]], title: str, path: Path) -> Path:
     """Local oil speed along the outline (counter-clockwise from the bottom face) for several conditions."""
-    import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(8.5, 4.0))
+    fig, ax = subplots(figsize=(8.5, 4.0))
     spans: list[tuple[str, float, float]] = []
     for cond, (points, htc) in results.items():
         x, spans = perimeter_coordinate(points)
@@ -53,6 +51,5 @@ def plot_velocity(results: dict[str, tuple[BoundaryPoints, BoundaryHTC]], title:
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
     return path

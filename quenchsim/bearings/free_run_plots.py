@@ -9,6 +9,7 @@ import pathlib
 import numpy as np
 
 from quenchsim.bearings import free_run as fr
+from quenchsim.figures import save, subplots
 
 
 def plot_free_run(pulse_times_s: np.ndarray, result: fr.FreeRunResult, path: pathlib.Path) -> pathlib.Path:
@@ -18,9 +19,8 @@ def plot_free_run(pulse_times_s: np.ndarray, result: fr.FreeRunResult, path: pat
     path.parent.mkdir(parents=True, exist_ok=True)
     s = fr.speed_samples(pulse_times_s)
     d = result.detail
-    import matplotlib.pyplot as plt
 
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4))
+    fig, (ax1, ax2) = subplots(1, 2, figsize=(11, 4))
     ax1.plot(s.t_s, s.omega_rad_s, ".", ms=2, label="2 pi / period")
     if d.method == "model":
         theta = 2.0 * math.pi * np.arange(pulse_times_s.size)
@@ -52,7 +52,6 @@ def plot_free_run(pulse_times_s: np.ndarray, result: fr.FreeRunResult, path: pat
         ax2.set_xscale("log")
     ax2.legend()
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
     return path
 

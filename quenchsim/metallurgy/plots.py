@@ -7,6 +7,7 @@ import pathlib
 
 import numpy as np
 
+from quenchsim.figures import save, subplots
 from quenchsim.metallurgy.cct import CCTDiagram
 from quenchsim.metallurgy.kinetics import Kinetics
 
@@ -16,9 +17,8 @@ COLOURS = {"pearlite": "tab:red", "bainite": "tab:blue"}
 
 def plot_cct(diagram: CCTDiagram, kin: Kinetics, path: pathlib.Path) -> pathlib.Path:
     """Temperature vs log time: start/finish lines of each product, Ms, cooling curves labelled with the final HRC."""
-    import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(8.0, 6.0))
+    fig, ax = subplots(figsize=(8.0, 6.0))
     d = diagram
     for p in kin.reactions:
         ax.plot(d.start_time_s[p], d.start_T_C[p], "-", color=COLOURS[p], lw=2, label=f"{p} 1 %")
@@ -45,6 +45,5 @@ def plot_cct(diagram: CCTDiagram, kin: Kinetics, path: pathlib.Path) -> pathlib.
     ax.grid(True, which="both", lw=0.3)
     ax.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
     return path

@@ -6,7 +6,6 @@ Sections are drawn in the r-z plane in mm (the VTK files hold x = r, y = z in me
 
 from __future__ import annotations
 
-import io
 import itertools
 from typing import Any
 
@@ -14,6 +13,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.tri import Triangulation
 
+from quenchsim.figures import png_bytes, subplots
 from quenchsim.results import Frame
 
 DISTORTION_SCALE = 10.0
@@ -21,20 +21,13 @@ DISTORTION_SCALE = 10.0
 DPI = 100
 
 
-def _subplots(*grid: int, figsize: tuple[float, float], **kwargs: Any) -> tuple[Figure, Any]:
-    fig = Figure(figsize=figsize)
-    return fig, fig.subplots(*grid, **kwargs)
-
-
 def _png(fig: Figure) -> bytes:
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=DPI)
-    return buf.getvalue()
+    return png_bytes(fig, DPI)
 
 
 def cooling_curves(time_s: np.ndarray, temperatures_C: dict[str, np.ndarray], title: str) -> bytes:
     """Temperature against time at every probe, linear and logarithmic time axes side by side."""
-    fig, axes = _subplots(1, 2, figsize=(11.0, 4.2))
+    fig, axes = subplots(1, 2, figsize=(11.0, 4.2))
     t = np.asarray(time_s)
     for name, T in temperatures_C.items():
         axes[0].plot(t, T, label=name)
@@ -57,7 +50,7 @@ def field_maps(frame: Frame, fields: list[tuple[str, str, str, float | None, flo
     height = np.ptp(tri.y) or 1.0
     panel_w = 2.6
     panel_h = float(np.clip(panel_w * height / width, 2.5, 7.5))
-    fig, axes = _subplots(1, len(fields), figsize=(panel_w * len(fields) + 0.6, panel_h + 1.2), squeeze=False)
+    fig, axes = subplots(1, len(fields), figsize=(panel_w * len(fields) + 0.6, panel_h + 1.2), squeeze=False)
     for ax, (name, label, cmap, vmin, vmax) in zip(axes[0], fields):
         values = frame.point_data[name]
         pc = ax.tripcolor(tri, values, shading="gouraud", cmap=cmap, vmin=vmin, vmax=vmax)
@@ -75,7 +68,7 @@ def field_maps(frame: Frame, fields: list[tuple[str, str, str, float | None, flo
 def hardness_traverse(depth_mm: np.ndarray, curves: dict[str, np.ndarray], threshold_HRC: float | None,
                       title: str) -> bytes:
     """HRC against depth below the surface at mid-width, one curve per surface."""
-    fig, ax = _subplots(figsize=(7.0, 4.2))
+    fig, ax = subplots(figsize=(7.0, 4.2))
     for label, hrc in curves.items():
         ax.plot(depth_mm, hrc, label=label)
     if threshold_HRC is not None:
@@ -100,7 +93,7 @@ def distortion(r_before_mm: np.ndarray, z_before_mm: np.ndarray, r_after_mm: np.
     z_mag = z_before_mm + DISTORTION_SCALE * (z_after_mm - z_before_mm)
     height = np.ptp(z_before_mm) or 1.0
     width = np.ptp(r_before_mm) or 1.0
-    fig, (ax, ax2) = _subplots(1, 2, figsize=(10.0, float(np.clip(4.5 * height / width, 4.0, 8.0))),
+    fig, (ax, ax2) = subplots(1, 2, figsize=(10.0, float(np.clip(4.5 * height / width, 4.0, 8.0))),
                                   gridspec_kw={"width_ratios": [1.0, 1.3]})
     ax.plot(closed(r_before_mm), closed(z_before_mm), "k-", lw=1.0, label="before quench")
     ax.plot(closed(r_mag), closed(z_mag), "r-", lw=1.4, label=f"after quench, displacement x{DISTORTION_SCALE:g}")
@@ -129,7 +122,7 @@ def distortion(r_before_mm: np.ndarray, z_before_mm: np.ndarray, r_after_mm: np.
 
 def stress_traverse(r_mm: np.ndarray, curves: dict[str, np.ndarray], title: str) -> bytes:
     """Residual stress against radius at mid-width (MPa)."""
-    fig, ax = _subplots(figsize=(7.0, 4.2))
+    fig, ax = subplots(figsize=(7.0, 4.2))
     for label, values in curves.items():
         ax.plot(r_mm, values, label=label)
     ax.axhline(0.0, color="k", lw=0.6)
@@ -148,7 +141,7 @@ def compare_curves(panels: dict[str, dict[str, tuple[np.ndarray, np.ndarray]]], 
     n = len(panels)
     ncol = min(3, n)
     nrow = -(-n // ncol)
-    fig, axes = _subplots(nrow, ncol, figsize=(4.4 * ncol, 3.4 * nrow), squeeze=False)
+    fig, axes = subplots(nrow, ncol, figsize=(4.4 * ncol, 3.4 * nrow), squeeze=False)
     for ax, (name, curves) in zip(axes.ravel(), panels.items()):
         for label, (x, y) in curves.items():
             ax.plot(np.where(x > 0, x, np.nan) if log_x else x, y, label=label)
@@ -172,7 +165,7 @@ def responses(rows: list[dict[str, Any]], x: str, group_by: list[str], outputs: 
     n = len(outputs)
     ncol = min(3, n)
     nrow = -(-n // ncol)
-    fig, axes = _subplots(nrow, ncol, figsize=(4.2 * ncol, 3.3 * nrow), squeeze=False)
+    fig, axes = subplots(nrow, ncol, figsize=(4.2 * ncol, 3.3 * nrow), squeeze=False)
     groups = sorted({tuple(r.get(g) for g in group_by) for r in rows},
                     key=lambda k: tuple((0, v, "") if isinstance(v, (int, float)) else (1, 0, str(v)) for v in k))
     markers = itertools.cycle("os^vD<>")

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import numpy as np
 
-from quenchsim.bearings.big_end.simulate import RunResult  # noqa: E402
+from quenchsim.bearings.big_end.simulate import RunResult
+from quenchsim.figures import save, subplots
 
 
 def cage_orbit_um(result: RunResult) -> tuple[np.ndarray, np.ndarray]:
@@ -35,7 +35,7 @@ def write_csv(result: RunResult, path: Path) -> Path:
 def plot_run(result: RunResult, path: Path, title: str) -> Path:
     """Four panels: cage / roller-1 slips, pocket force of roller 1, cage-centre orbit."""
     rev = result.crank_angle / (2 * np.pi)
-    fig, ax = plt.subplots(2, 2, figsize=(11, 7))
+    fig, ax = subplots(2, 2, figsize=(11, 7))
     ax[0, 0].plot(rev, result.cage_slip_pct, lw=0.6)
     ax[0, 0].set(xlabel="crank revolutions", ylabel="cage slip [%]", title="cage slip ratio")
     ax[0, 1].plot(rev, result.roller_orbital_slip_pct[0], lw=0.6, label="orbital")
@@ -54,6 +54,5 @@ def plot_run(result: RunResult, path: Path, title: str) -> Path:
     fig.suptitle(title)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
     return path

@@ -6,16 +6,15 @@ from __future__ import annotations
 import pathlib
 from collections.abc import Sequence
 
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import numpy as np
 
-from quenchsim.bearings.gas_journal.geometry import Grid  # noqa: E402
+from quenchsim.bearings.gas_journal.geometry import Grid
+from quenchsim.figures import save, subplots
 
 
 def _save(fig, path: pathlib.Path) -> pathlib.Path:
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
     return path
 
 
@@ -25,7 +24,7 @@ def pressure_field(grid: Grid, p: np.ndarray, title: str, path: pathlib.Path) ->
     theta = np.degrees(grid.theta(ii.astype(float), jj.astype(float)))
     z = jj * grid.h_eta
     pp = np.concatenate([p, p[:, :1]], axis=1)
-    fig, ax = plt.subplots(figsize=(8, 3.2))
+    fig, ax = subplots(figsize=(8, 3.2))
     mesh = ax.pcolormesh(theta, z, pp, shading="gouraud", cmap="viridis")
     fig.colorbar(mesh, ax=ax, label="P = p / pa")
     ax.set_xlabel("theta (deg, grid frame; skewed grid lines follow the grooves)")
@@ -37,7 +36,7 @@ def pressure_field(grid: Grid, p: np.ndarray, title: str, path: pathlib.Path) ->
 def load_curves(curves: dict[float, tuple[np.ndarray, np.ndarray, np.ndarray]], raimondi: Sequence[tuple],
                 path: pathlib.Path) -> pathlib.Path:
     """Load and attitude vs eccentricity per bearing number, with Raimondi's points."""
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(9, 3.6))
+    fig, (a1, a2) = subplots(1, 2, figsize=(9, 3.6))
     for lam, (eps, load, att) in curves.items():
         line, = a1.plot(eps, load, label=f"Lambda = {lam:g}")
         a2.plot(eps, att, color=line.get_color())
@@ -55,7 +54,7 @@ def load_curves(curves: dict[float, tuple[np.ndarray, np.ndarray, np.ndarray]], 
 
 def orbits(runs: Sequence[tuple[str, np.ndarray, np.ndarray]], path: pathlib.Path) -> pathlib.Path:
     """Rotor-centre orbits (displacement over clearance) with the clearance circle."""
-    fig, ax = plt.subplots(figsize=(5, 5))
+    fig, ax = subplots(figsize=(5, 5))
     t = np.linspace(0, 2 * np.pi, 200)
     ax.plot(np.cos(t), np.sin(t), "k-", lw=0.8)
     for label, x, y in runs:
@@ -71,7 +70,7 @@ def orbits(runs: Sequence[tuple[str, np.ndarray, np.ndarray]], path: pathlib.Pat
 def stability_trials(trials: Sequence[tuple[float, bool, float, float]], critical: float, title: str,
                      path: pathlib.Path) -> pathlib.Path:
     """Orbit growth rate vs mass parameter for every bisection trial (stability map at one Lambda)."""
-    fig, ax = plt.subplots(figsize=(6, 3.6))
+    fig, ax = subplots(figsize=(6, 3.6))
     for mbar, stable, growth, _ in trials:
         ax.semilogx(mbar, growth, "o", color="tab:green" if stable else "tab:red")
     ax.axvline(critical, color="k", ls="--", label=f"critical Mbar = {critical:.3g}")
@@ -86,7 +85,7 @@ def stability_trials(trials: Sequence[tuple[float, bool, float, float]], critica
 def convergence(series: dict[str, tuple[np.ndarray, np.ndarray]], xlabel: str, ylabel: str, title: str,
                 path: pathlib.Path, loglog: bool = True) -> pathlib.Path:
     """Generic convergence plot: one line per series."""
-    fig, ax = plt.subplots(figsize=(6, 3.8))
+    fig, ax = subplots(figsize=(6, 3.8))
     for label, (x, y) in series.items():
         (ax.loglog if loglog else ax.plot)(x, y, "o-", label=label)
     ax.set_xlabel(xlabel)

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pathlib
 
-import matplotlib.pyplot as plt  # noqa: E402
 
-from quenchsim.bearings.runout.analysis import RunoutResult  # noqa: E402
+from quenchsim.bearings.runout.analysis import RunoutResult
+from quenchsim.figures import save, subplots
 
 _NM = 1e9
 
@@ -14,7 +14,7 @@ _NM = 1e9
 def orbit_plot(result: RunoutResult, path: pathlib.Path, title: str = "") -> pathlib.Path:
     """x-y orbit of the free ring's centre (nm) and z(t)."""
     tr = result.trajectory
-    fig, (ax, az) = plt.subplots(1, 2, figsize=(10, 4.4), gridspec_kw={"width_ratios": [1, 1.4]})
+    fig, (ax, az) = subplots(1, 2, figsize=(10, 4.4), gridspec_kw={"width_ratios": [1, 1.4]})
     ax.plot((tr.x_m - tr.x_m.mean()) * _NM, (tr.y_m - tr.y_m.mean()) * _NM, lw=0.6)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x [nm]")
@@ -28,8 +28,7 @@ def orbit_plot(result: RunoutResult, path: pathlib.Path, title: str = "") -> pat
         fig.suptitle(title)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
     return path
 
 
@@ -37,7 +36,7 @@ def spectrum_plot(result: RunoutResult, path: pathlib.Path, title: str = "", lab
     """Whirl (radial) and axial p-p spectra against order per revolution of the rotating ring,
     with the strongest identified lines labelled by their kinematic source."""
     fr = result.case.speed_hz
-    fig, axes = plt.subplots(2, 1, figsize=(10, 6.5))
+    fig, axes = subplots(2, 1, figsize=(10, 6.5))
     for ax, name in zip(axes, ("radial", "axial")):
         s = result.spectra[name]
         ax.plot(s.frequency_hz / fr, s.amplitude_pp_m * _NM, lw=0.7)
@@ -51,6 +50,5 @@ def spectrum_plot(result: RunoutResult, path: pathlib.Path, title: str = "", lab
         fig.suptitle(title)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
     return path
