@@ -29,6 +29,7 @@ from quenchsim.bearings.big_end.ehl import (
     hertz_line_max_pressure, pan_hamrock_central_film, thermal_loading, thermal_reduction_factor,
     traction_coefficient)
 from quenchsim.bearings.big_end.journal import short_bearing_force
+from quenchsim.bearings.big_end.state import cage_index, n_positions, ring_index
 
 
 class Params(NamedTuple):
@@ -82,11 +83,6 @@ class Params(NamedTuple):
     table_fx: np.ndarray  # external force on the outer ring, frame components
     table_fy: np.ndarray
     table_omega_o: np.ndarray  # outer-ring angular velocity relative to the frame
-
-
-def n_states(n_rollers: int) -> int:
-    """6 N + 10."""
-    return 6 * n_rollers + 10
 
 
 @njit(cache=True)
@@ -145,11 +141,11 @@ def evaluate(t: float, y: np.ndarray, p: Params) -> tuple[np.ndarray, np.ndarray
     called ~10^5 times per crank revolution).
     """
     n = p.n
-    nq = 3 * n + 5
-    xc, yc, psi = y[3 * n], y[3 * n + 1], y[3 * n + 2]
-    xo, yo = y[3 * n + 3], y[3 * n + 4]
-    vxc, vyc, wc = y[nq + 3 * n], y[nq + 3 * n + 1], y[nq + 3 * n + 2]
-    vxo, vyo = y[nq + 3 * n + 3], y[nq + 3 * n + 4]
+    nq, ic, io = n_positions(n), cage_index(n), ring_index(n)
+    xc, yc, psi = y[ic], y[ic + 1], y[ic + 2]
+    xo, yo = y[io], y[io + 1]
+    vxc, vyc, wc = y[nq + ic], y[nq + ic + 1], y[nq + ic + 2]
+    vxo, vyo = y[nq + io], y[nq + io + 1]
     r = p.r_roller
     l_r = p.l_roller[0]
     l_p = p.l_pocket[0]
@@ -291,18 +287,18 @@ def evaluate(t: float, y: np.ndarray, p: Params) -> tuple[np.ndarray, np.ndarray
     fxo += fx_ext
     fyo += fy_ext
 
-    acc[3 * n] = fxc / p.m_cage + ax0 + w * w * xc + 2.0 * w * vyc + wd * yc
-    acc[3 * n + 1] = fyc / p.m_cage + ay0 + w * w * yc - 2.0 * w * vxc - wd * xc
-    acc[3 * n + 2] = mc / p.i_cage - wd
-    acc[3 * n + 3] = fxo / p.m_ring + ax0 + w * w * xo + 2.0 * w * vyo + wd * yo
-    acc[3 * n + 4] = fyo / p.m_ring + ay0 + w * w * yo - 2.0 * w * vxo - wd * xo
+    acc[ic] = fxc / p.m_cage + ax0 + w * w * xc + 2.0 * w * vyc + wd * yc
+    acc[ic + 1] = fyc / p.m_cage + ay0 + w * w * yc - 2.0 * w * vxc - wd * xc
+    acc[ic + 2] = mc / p.i_cage - wd
+    acc[io] = fxo / p.m_ring + ax0 + w * w * xo + 2.0 * w * vyo + wd * yo
+    acc[io + 1] = fyo / p.m_ring + ay0 + w * w * yo - 2.0 * w * vxo - wd * xo
     return acc, pocket, q_in_all, q_out_all
 
 
 @njit(cache=True)
 def rhs(t: float, y: np.ndarray, p: Params) -> np.ndarray:
     """dy/dt = [v, a(q, v, t)]."""
-    nq = 3 * p.n + 5
+    nq = n_positions(p.n)
     acc, _, _, _ = evaluate(t, y, p)
     out = np.empty(2 * nq)
     out[:nq] = y[nq:]

@@ -7,13 +7,14 @@ from pathlib import Path
 import numpy as np
 
 from quenchsim.bearings.big_end.simulate import RunResult
+from quenchsim.bearings.big_end.state import StateView
 from quenchsim.figures import save, subplots
 
 
 def cage_orbit_um(result: RunResult) -> tuple[np.ndarray, np.ndarray]:
     """Cage centre relative to the outer-ring centre [um], in the frame of the run."""
-    n = result.params.n
-    return (1e6 * (result.y[3 * n] - result.y[3 * n + 3]), 1e6 * (result.y[3 * n + 1] - result.y[3 * n + 4]))
+    s = StateView(result.y, result.params.n)
+    return 1e6 * (s.cage_x - s.ring_x), 1e6 * (s.cage_y - s.ring_y)
 
 
 def write_csv(result: RunResult, path: Path) -> Path:

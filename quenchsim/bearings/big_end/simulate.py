@@ -25,7 +25,8 @@ from scipy.optimize import brentq
 
 from quenchsim.bearings.big_end.contact import palmgren_compliance
 from quenchsim.bearings.big_end.case import MODES, BigEndCase, ClearanceSet, Operation
-from quenchsim.bearings.big_end.dynamics import Params, evaluate, jacobian_packed, n_states, pack, rhs_packed
+from quenchsim.bearings.big_end.dynamics import Params, evaluate, jacobian_packed, pack, rhs_packed
+from quenchsim.bearings.big_end.state import StateView, cage_index, n_positions, n_states
 from quenchsim.bearings.big_end.engine import CrankSlider, big_end_load
 from quenchsim.bearings.big_end.lubricant import load_oil
 from quenchsim.errors import InputError, SolverError, require
@@ -159,14 +160,14 @@ def initial_state(p: Params) -> np.ndarray:
     bore = p.r_out + ring[0] * np.cos(ang) + ring[1] * np.sin(ang)
     rp = 0.5 * (p.r_in + bore)
     y = np.zeros(n_states(n))
-    nq = 3 * n + 5
-    y[0:n] = rp * np.cos(ang)
-    y[n:2 * n] = rp * np.sin(ang)
-    y[3 * n + 3:3 * n + 5] = ring
-    y[nq:nq + n] = -orbit[0] * rp * np.sin(ang)
-    y[nq + n:nq + 2 * n] = orbit[0] * rp * np.cos(ang)
-    y[nq + 2 * n:nq + 3 * n] = orbit[0] + spin[0]
-    y[nq + 3 * n + 2] = orbit[0]
+    s = StateView(y, n)
+    s.roller_x[:] = rp * np.cos(ang)
+    s.roller_y[:] = rp * np.sin(ang)
+    s.ring_xy[:] = ring
+    s.roller_vx[:] = -orbit[0] * rp * np.sin(ang)
+    s.roller_vy[:] = orbit[0] * rp * np.cos(ang)
+    s.roller_spin[:] = orbit[0] + spin[0]
+    y[n_positions(n) + cage_index(n) + 2] = orbit[0]     # the cage turns with the rollers' orbit
     return y
 
 
@@ -217,14 +218,12 @@ def integrate(p: Params, revolutions: float, samples_per_revolution: int, method
 def slip_histories(p: Params, t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Cage slip (T,), roller orbital slip (N, T) and roller spin slip (N, T) in % at the samples
     (t, y) (definitions in the module docstring)."""
-    n = p.n
-    nq = 3 * n + 5
+    s = StateView(y, p.n)
     omega_o = np.interp((p.omega * t) % (2 * np.pi), p.table_theta, p.table_omega_o)
     orbit_th, spin_th = theoretical_speeds(p, omega_o)
-    xr, yr = y[0:n], y[n:2 * n]
-    vxr, vyr, wr = y[nq:nq + n], y[nq + n:nq + 2 * n], y[nq + 2 * n:nq + 3 * n]
+    xr, yr, vxr, vyr, wr = s.roller_x, s.roller_y, s.roller_vx, s.roller_vy, s.roller_spin
     orbit = (xr * vyr - yr * vxr) / (xr**2 + yr**2)
-    cage = y[nq + 3 * n + 2]
+    cage = s.cage_speed
     return (100.0 * (1.0 - (p.omega + cage) / (p.omega + orbit_th)),
             100.0 * (1.0 - (p.omega + orbit) / (p.omega + orbit_th)),
             100.0 * (1.0 - (wr - orbit) / spin_th))

@@ -23,6 +23,7 @@ from quenchsim.bearings.big_end.output import cage_orbit_um
 from quenchsim.bearings.big_end.simulate import (DEFAULT_INTEGRATOR, RTOL, RunResult, build_params,
                                                  initial_state, rhs_function, slip_histories, solver_options,
                                                  theoretical_speeds)
+from quenchsim.bearings.big_end.state import StateView
 from quenchsim.bearings.big_end.statistics import steady_mask
 from quenchsim.validation import study_targets
 
@@ -149,17 +150,15 @@ def _plot_cost(rows: list[tuple[str, float]], bench: list[dict], path: pathlib.P
 
 def _definition_variants(result: RunResult) -> dict[str, float]:
     """Mean |slip| [%] of one run under other slip definitions and averaging choices (same samples)."""
-    p, y, n = result.params, result.y, result.params.n
-    nq = 3 * n + 5
+    p, s = result.params, StateView(result.y, result.params.n)
     k = steady_mask(result)
     omega_o = np.interp(result.crank_angle % (2 * np.pi), p.table_theta, p.table_omega_o)
     orbit_th, spin_th = theoretical_speeds(p, omega_o)
-    xr, yr = y[0:n], y[n:2 * n]
-    vxr, vyr, wr = y[nq:nq + n], y[nq + n:nq + 2 * n], y[nq + 2 * n:nq + 3 * n]
+    xr, yr, vxr, vyr, wr = s.roller_x, s.roller_y, s.roller_vx, s.roller_vy, s.roller_spin
     d = np.hypot(xr, yr)
     orbit = (xr * vyr - yr * vxr) / d**2
-    cage = y[nq + 3 * n + 2]
-    d_out = np.hypot(xr - y[3 * n + 3], yr - y[3 * n + 4])
+    cage = s.cage_speed
+    d_out = np.hypot(xr - s.ring_x, yr - s.ring_y)
     spin = wr - orbit
 
     def mean_abs(x: np.ndarray) -> float:
@@ -217,9 +216,9 @@ def _contact_states(result: RunResult) -> list[tuple[str, float, float, float, f
 def _plot_spin_by_angle(result: RunResult, path: pathlib.Path) -> pathlib.Path:
     """Mean |spin slip|, race loads and pocket force against the roller's angle in the pin frame
     (0 = along the crank arm, away from the crank centre), with the frame force m r_c omega^2 |sin|."""
-    p, n = result.params, result.params.n
+    p, s = result.params, StateView(result.y, result.params.n)
     k = steady_mask(result)
-    ang = np.degrees(np.arctan2(result.y[n:2 * n], result.y[0:n]))[:, k].ravel()
+    ang = np.degrees(np.arctan2(s.roller_y, s.roller_x))[:, k].ravel()
     edges = np.linspace(-180.0, 180.0, 37)
     idx = np.clip(np.digitize(ang, edges) - 1, 0, 35)
     centre = 0.5 * (edges[1:] + edges[:-1])
@@ -249,14 +248,13 @@ def _plot_spin_by_angle(result: RunResult, path: pathlib.Path) -> pathlib.Path:
 def _cage_land_state(result: RunResult, stride: int = 10) -> dict[str, float]:
     """Cage centre relative to the outer ring (mean e/c, share of time in solid land contact, whirl rate
     of the centre in the inertial frame / omega) and the mean Couette torque of the land films [N m]."""
-    p, y, n = result.params, result.y, result.params.n
-    nq = 3 * n + 5
+    p, s = result.params, StateView(result.y, result.params.n)
     k = steady_mask(result)
-    ex, ey = y[3 * n] - y[3 * n + 3], y[3 * n + 1] - y[3 * n + 4]
+    ex, ey = s.cage_x - s.ring_x, s.cage_y - s.ring_y
     e = np.hypot(ex, ey)
     omega_o = np.interp(result.crank_angle % (2 * np.pi), p.table_theta, p.table_omega_o)
-    torque = [p.lands * short_bearing_force(ex[i], ey[i], y[nq + 3 * n, i] - y[nq + 3 * n + 3, i],
-                                            y[nq + 3 * n + 1, i] - y[nq + 3 * n + 4, i], y[nq + 3 * n + 2, i],
+    torque = [p.lands * short_bearing_force(ex[i], ey[i], s.cage_vx[i] - s.ring_vx[i],
+                                            s.cage_vy[i] - s.ring_vy[i], s.cage_speed[i],
                                             omega_o[i], p.land_radius, p.land_width, p.guide_clearance, p.eta0,
                                             p.eps_max)[2] for i in np.flatnonzero(k)[::stride]]
     phase = np.unwrap(np.arctan2(ey[k], ex[k])) + result.crank_angle[k]
