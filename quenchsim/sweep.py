@@ -166,6 +166,11 @@ def make_sweep(raw_case: dict[str, Any], grid: dict[str, Any] | None = None, zip
     zip_rows = [dict(zip(zip_flat, values)) for values in zip(*zip_flat.values())] or [{}]
     points = [{**dict(zip(grid_flat, combo)), **z} for combo in itertools.product(*grid_flat.values())
               for z in zip_rows]
+    for name, point in zip(case_names(parameters, points), points):   # every case is checked before any runs
+        try:
+            base.with_overrides(point)
+        except InputError as exc:
+            raise InputError(f"sweep case {name}: {exc.field}", exc.value, exc.allowed) from None
     return SweepSpec(name=name, case_path=case_path, condition=condition, fixed=fixed_flat,
                      parameters=parameters, points=points, raw_case=raw_case)
 
@@ -361,13 +366,22 @@ def read_results(path: str | Path) -> list[dict[str, Any]]:
                 for row in csv.DictReader(fh)]
 
 
+SCHEDULER_TIMEOUT_S = 5.0
+"""How long to wait for a Dask scheduler given by address before giving up with one line."""
+
+
 def _client(scheduler: str | None, workers: int) -> tuple[Any, Any]:
     import dask
     from dask.distributed import Client, LocalCluster
 
     logging.getLogger("distributed").setLevel(logging.ERROR)
     if scheduler:
-        return Client(scheduler, timeout="30s"), None
+        try:
+            return Client(scheduler, timeout=f"{SCHEDULER_TIMEOUT_S:g}s"), None
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise InputError("--scheduler", scheduler,
+                             f"no Dask scheduler answered within {SCHEDULER_TIMEOUT_S:g} s ({type(exc).__name__}); start "
+                             "one with `dask scheduler` or leave --scheduler out for a local cluster") from None
     # the workers' statistical profiler samples the case's thread every 10 ms: ~6 % of a case's CPU time;
     # worker-saturation 1.0: a case goes to a worker only when its thread is free (the default 1.1 lets a
     # one-thread worker queue a second case, so the last cases can wait behind a long one while the other

@@ -135,3 +135,51 @@ def test_negative_numbers_in_case_fields():
     raw["quench"]["time_s"] = -5
     with pytest.raises(InputError, match="quench.time_s = -5: must be > 0"):
         case_from_dict(raw, "1")
+
+
+@pytest.mark.parametrize("override, message", [
+    ({"geometry.width_mm": float("inf")}, "geometry.width_mm = inf: must be a finite number"),
+    ({"geometry.inner_diameter_mm": 0.0}, "geometry.inner_diameter_mm = 0.0: must be > 0"),
+    ({"quench.bath.od_jet_speed_mm_s": 1e9}, "quench.bath.od_jet_speed_mm_s = 1000000000.0: must be <= 50000"),
+    ({"quench.bath.rotation_rpm": 1e5}, "quench.bath.rotation_rpm = 100000.0: must be <= 600"),
+    ({"quench.bath.oil_temperature_C": 900.0}, "quench.bath.oil_temperature_C = 900.0: must be below the boiling"),
+    ({"mesh.size_mmm": 4.0}, "mesh.size_mmm = 4.0: unknown key"),
+    ({"quench.tme_s": 4.0}, "quench.tme_s = 4.0: unknown key"),
+    ({"colling": 1}, "colling = 1: unknown table or key"),
+    ({"time.dt_min_s": 500.0}, "time.dt_min_s = 500.0: must not exceed time.dt_max_s"),
+    ({"air.emissivity": 1.5}, "air.emissivity = 1.5: must be <= 1"),
+    ({"mechanics.plastisity": False}, "mechanics.plastisity = False: unknown option"),
+])
+def test_absurd_inputs_are_one_line_errors_before_any_work(override, message):
+    with pytest.raises(InputError, match=message.replace("(", r"\(").replace(".", r"\.")):
+        load_case(CASE_A, "1", override)
+
+
+def test_quench_medium_hotter_than_the_austenitising_temperature_is_an_error():
+    raw = raw_case()
+    raw["quench"] = {"time_s": 100.0, "htc_model": "table",
+                     "htc_table": {"T_C": [0.0, 1000.0], "h_W_m2K": [500.0, 500.0], "ambient_C": 900.0}}
+    with pytest.raises(InputError, match="quench.htc_table.ambient_C = 900.0: the quench medium must be colder"):
+        case_from_dict(raw, "1")
+
+
+def test_a_failed_check_writes_nothing_and_an_unwritable_out_is_one_line(tmp_path, capsys):
+    out = tmp_path / "o"
+    assert main(["run", str(CASE_A), "--condition", "1", "--set", "geometry.width_mm=-1", "--out", str(out),
+                 "--quiet"]) == 2
+    assert not out.exists()
+    blocker = tmp_path / "a_file"
+    blocker.write_text("")
+    assert main(["run", str(CASE_A), "--condition", "1", "--out", str(blocker / "run"), "--quiet"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 2 and "out = " in err[1] and "cannot be written" in err[1]
+
+
+def test_derived_cases_are_checked_again():
+    case = load_case(CASE_A, "1")
+    finer = case.refined(mesh=0.5, step=0.5)
+    assert finer.mesh.size_mm == 0.5 * case.mesh.size_mm and finer.time.max_dT_K == 0.5 * case.time.max_dT_K
+    assert case.mesh.size_mm == 5.0    # the original is unchanged (frozen)
+    with pytest.raises(InputError, match="mesh.size_mm = -5.0"):
+        case.with_overrides({"mesh.size_mm": -5.0})
+    assert case.with_overrides({"air.until_max_C": None}).air.until_max_C == 40.0   # None: back to the default

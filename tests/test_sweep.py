@@ -94,12 +94,29 @@ def test_nozzle_sweep_file_has_six_ring_a_cases_over_jet_speeds():
     assert len(ids) >= 2 and len(ods) >= 2
 
 
-def test_failed_case_is_recorded_and_the_rest_go_on_and_rerun_skips_finished(tmp_path):
-    spec = make_sweep(small_case(), grid={"mesh.size_mm": [-1.0, 4.0]})
+def test_an_invalid_case_value_stops_the_sweep_before_any_run(tmp_path):
+    with pytest.raises(InputError, match=r"sweep case size_mm=-1: mesh.size_mm = -1.0: must be > 0"):
+        make_sweep(small_case(), grid={"mesh.size_mm": [-1.0, 4.0]})
+    assert not any(tmp_path.iterdir())
+
+
+def test_failed_case_is_recorded_and_the_rest_go_on_and_rerun_skips_finished(tmp_path, monkeypatch):
+    import quenchsim.pipeline
+    from quenchsim.errors import SolverError
+
+    real_run = quenchsim.pipeline.run
+
+    def run_failing_at_3mm(case, out, progress=True):
+        if case.mesh.size_mm == 3.0:
+            raise SolverError("the stress solver did not converge (a failure during the run)")
+        return real_run(case, out, progress)
+
+    monkeypatch.setattr(quenchsim.pipeline, "run", run_failing_at_3mm)
+    spec = make_sweep(small_case(), grid={"mesh.size_mm": [3.0, 4.0]})
     first = run_sweep(spec, tmp_path, workers=0, progress=False)
     assert (first.ran, first.failed, first.skipped) == (2, 1, 0)
     rows = {r["case"]: r for r in read_results(tmp_path / RESULTS_CSV)}
-    assert rows["size_mm=-1"]["status"] == "failed" and "mesh.size_mm" in rows["size_mm=-1"]["error"]
+    assert rows["size_mm=3"]["status"] == "failed" and "did not converge" in rows["size_mm=3"]["error"]
     ok = rows["size_mm=4"]
     summary = json.loads((tmp_path / "size_mm=4" / "summary.json").read_text())
     assert ok["status"] == "ok" and ok["mesh.size_mm"] == 4.0
@@ -262,3 +279,13 @@ def test_keep_freed_memory_stops_page_faults_of_reallocated_arrays():
     assert out.returncode == 0, out.stderr
     under_dask, ok, after = out.stdout.split()
     assert float(under_dask) > 500 and ok == "True" and float(after) < 10, out.stdout
+
+
+def test_an_unreachable_scheduler_is_one_line(tmp_path, monkeypatch):
+    import quenchsim.sweep
+
+    monkeypatch.setattr(quenchsim.sweep, "SCHEDULER_TIMEOUT_S", 1.0)
+    spec = make_sweep(small_case(), grid={"quench.time_s": [20.0]})
+    address = f"tcp://127.0.0.1:{_free_port()}"        # nothing listens there
+    with pytest.raises(InputError, match=r"--scheduler = 'tcp://127\.0\.0\.1:\d+': no Dask scheduler answered within 1 s"):
+        run_sweep(spec, tmp_path, scheduler=address, progress=False)

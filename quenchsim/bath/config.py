@@ -10,6 +10,12 @@ from quenchsim.bath.quenchant import OilProperties, load_oil
 from quenchsim.errors import InputError
 
 SIDES = ("id", "od")
+MAX_JET_SPEED_MM_S = 50_000.0
+"""Largest nozzle exit speed accepted (50 m/s): quench-tank agitation and spray nozzles run at up to a few
+m/s (the reference conditions: 0.4-10.7 m/s); far above, the free-jet and wall-jet correlations of
+quenchsim.bath.correlations are extrapolated beyond any quench practice."""
+MAX_ROTATION_RPM = 600.0
+"""Largest part rotation accepted (turntables turn at ~1-30 rpm; the reference rings at 11 rpm)."""
 
 
 @dataclass(frozen=True)
@@ -75,9 +81,9 @@ def _row(name: str, spec: Any, bath: dict[str, Any], field: str) -> NozzleRow:
     if side not in SIDES:
         raise InputError(f"{where}.side", side, "must be 'id' or 'od' (or start the row name with id_/od_)")
     if "jet_speed_mm_s" in spec:
-        speed = _number(spec, "jet_speed_mm_s", where, lo=0.0)
+        speed = _number(spec, "jet_speed_mm_s", where, lo=0.0, hi=MAX_JET_SPEED_MM_S)
     else:
-        speed = _number(bath, f"{side}_jet_speed_mm_s", field, lo=0.0)
+        speed = _number(bath, f"{side}_jet_speed_mm_s", field, lo=0.0, hi=MAX_JET_SPEED_MM_S)
     count = spec.get("count")
     if isinstance(count, bool) or not isinstance(count, int) or count < 1:
         raise InputError(f"{where}.count", count, "must be an integer >= 1")
@@ -102,7 +108,7 @@ def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
                          f"must be below the boiling point of {name} ({oil.boiling_point_C:g} C)")
     for side in SIDES:
         if f"{side}_jet_speed_mm_s" in spec:
-            _number(spec, f"{side}_jet_speed_mm_s", field, lo=0.0)
+            _number(spec, f"{side}_jet_speed_mm_s", field, lo=0.0, hi=MAX_JET_SPEED_MM_S)
     nozzles = spec.get("nozzles", {})
     if not isinstance(nozzles, dict):
         raise InputError(f"{field}.nozzles", nozzles, "must be a table of named rows [nozzles.<name>]")
@@ -112,7 +118,7 @@ def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
         raise InputError(f"{field}.T_max_C", T_max, f"must exceed the boiling point {oil.boiling_point_C:g} C")
     return BathConfig(
         quenchant=oil, oil_temperature_C=T_oil,
-        rotation_rpm=_number(spec, "rotation_rpm", field, 0.0, lo=0.0),
+        rotation_rpm=_number(spec, "rotation_rpm", field, 0.0, lo=0.0, hi=MAX_ROTATION_RPM),
         rows=rows,
         oil_swirl_fraction=_number(spec, "oil_swirl_fraction", field, 0.0, lo=0.0, hi=1.0),
         turntable_open_fraction=_number(spec, "turntable_open_fraction", field, 0.5, lo=0.0, hi=1.0),

@@ -102,7 +102,9 @@ def grease_life(grease: str, base_oil: str, dm_mm: float, speed_rpm: float, temp
     k1 = base_oil_factor(grease, base_oil)
     require(math.isfinite(dm_mm) and dm_mm > 0.0, "dm_mm", dm_mm, "must be a positive pitch diameter in mm")
     require(math.isfinite(speed_rpm) and speed_rpm > 0.0, "speed_rpm", speed_rpm, "must be a positive speed")
-    require(math.isfinite(temperature_C), "temperature_C", temperature_C, "must be finite")
+    require(math.isfinite(temperature_C) and -60.0 <= temperature_C <= 250.0, "temperature_C", temperature_C,
+            "must be within -60..250 C (the range of grease-lubricated rolling bearings; above ~250 C the "
+            "thickeners of lithium, lithium-complex and polyurea greases have passed their dropping points)")
     require(math.isfinite(load_ratio) and 0.0 <= load_ratio < 1.0, "load_ratio", load_ratio,
             "P/Cr must lie in [0, 1)")
     require(math.isfinite(speed_factor) and speed_factor >= 1.0, "speed_factor", speed_factor,

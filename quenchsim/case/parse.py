@@ -143,6 +143,7 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
             _unset_dotted(data, dotted)
         else:
             set_dotted(data, dotted, value)
+    data = deep_merge(DEFAULTS, data)   # a removed key falls back to its default
     for key in data:
         require(key in TABLE_KEYS[""], key, data[key], f"unknown table or key; a case takes {', '.join(TABLE_KEYS[''])}")
 

@@ -35,6 +35,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                         help="override any case field, e.g. --set quench.time_s=600")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    parser.add_argument("--json", action="store_true", help="print the key results as JSON instead of a table")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -50,7 +51,33 @@ def run(args: argparse.Namespace) -> int:
     logging.basicConfig(level=logging.WARNING, format="quenchsim: %(message)s")
     result = run_case(case, out, progress=not args.quiet)
     s = result.summary
-    print(json.dumps({"out": str(out), "status": s["status"], "probes": s["probes"], "hardness": s["hardness"],
-                      **({"dimensions_mm": s["dimensions_mm"]} if "dimensions_mm" in s else {}),
-                      "solver": s["solver"]}, indent=2))
+    if args.json:
+        print(json.dumps({"out": str(out), "status": s["status"], "probes": s["probes"], "hardness": s["hardness"],
+                          **({"dimensions_mm": s["dimensions_mm"]} if "dimensions_mm" in s else {}),
+                          "end_state": s["end_state"], "solver": s["solver"]}, indent=2))
+    else:
+        print(summary_table(s, out))
     return 0
+
+
+def summary_table(s: dict, out: Path) -> str:
+    """A short plain-text table of a run's key results (everything else is in summary.json)."""
+    rows = [f"{s['case']} condition {s['condition'] or '-'}: status {s['status']}, "
+            f"{s['solver']['steps']} steps, {s['solver']['wall_time_s']:.1f} s wall -> {out}"]
+    end = s["end_state"]
+    if not end["at_room_temperature"]:
+        rows.append(f"WARNING: the part is still hot (up to {end['max_temperature_C']:.0f} C at t = {end['time_s']:.0f} s): "
+                    "every result below is that of the hot part")
+    rows.append(f"{'probe':<10}{'t to 500 C (s)':>16}{'t to 300 C (s)':>16}{'t8/5 (s)':>10}")
+    fmt = lambda v, w: f"{v:>{w}.1f}" if v is not None else f"{'-':>{w}}"  # noqa: E731
+    for name, p in s["probes"].items():
+        rows.append(f"{name:<10}{fmt(p['t_to_500C_s'], 16)}{fmt(p['t_to_300C_s'], 16)}{fmt(p['t8_5_s'], 10)}")
+    h = s["hardness"]
+    rows.append("HRC58 depth at mid-width (mm): " + ", ".join(f"{k.split('_')[1]} {v:.2f}" for k, v in h["depth_mm"].items())
+                + f"; core {h['core_HRC']:.1f} HRC")
+    if "dimensions_mm" in s:
+        d = s["dimensions_mm"]
+        rows.append(f"{'dimension (mm)':<16}{'before':>10}{'after':>10}{'change':>10}")
+        for k in d["change"]:
+            rows.append(f"{k:<16}{d['before'][k]:>10.3f}{d['after'][k]:>10.3f}{d['change'][k]:>+10.3f}")
+    return "\n".join(rows)

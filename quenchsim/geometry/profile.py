@@ -246,8 +246,10 @@ def profile_from_case(geometry: dict[str, Any]) -> Profile:
                 return default
             raise InputError(f"geometry.{key}", None, "is required")
         v = g[key]
-        if isinstance(v, bool) or not isinstance(v, (int, float)):
-            raise InputError(f"geometry.{key}", v, "must be a number (mm)")
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise InputError(f"geometry.{key}", v, "must be a finite number (mm)")
+        if v < 0 or (v == 0 and default is None):
+            raise InputError(f"geometry.{key}", v, "must be > 0 (mm)" if default is None else "must be >= 0 (mm)")
         return float(v) * MM
 
     if kind == "rectangular":

@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 import tomli_w
 
+from quenchsim.errors import InputError
 from quenchsim.io import ProbeWriter, VtkSeries
 from quenchsim.io.revolve import revolve_vtu
 from quenchsim.results import files
@@ -23,7 +24,13 @@ class RunWriter:
 
     def __init__(self, out_dir: str | Path) -> None:
         self.out = Path(out_dir)
-        self.out.mkdir(parents=True, exist_ok=True)
+        try:
+            self.out.mkdir(parents=True, exist_ok=True)
+            probe = self.out / ".quenchsim_write_test"
+            probe.write_text("")
+            probe.unlink()
+        except OSError as exc:
+            raise InputError("out", str(self.out), f"cannot be written: {exc.strerror or exc}") from None
 
     @property
     def mesh_path(self) -> Path:

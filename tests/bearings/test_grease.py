@@ -150,6 +150,8 @@ def test_weibull_helper():
 
 
 def test_bad_input():
+    with pytest.raises(InputError, match="temperature_C = 1000.0: must be within -60..250 C"):
+        _life(temperature_C=1000.0)
     with pytest.raises(InputError, match="speed_rpm"):
         _life(speed_rpm=-1.0)
     with pytest.raises(InputError, match="load_ratio"):
