@@ -23,9 +23,14 @@ __all__ = ["PHASES", "Property", "parse_property", "materials_dir", "load_materi
 
 
 def materials_dir() -> Path:
-    """The data directory: ``$QUENCHSIM_MATERIALS`` or the repository's ``materials/``."""
+    """The data directory: ``$QUENCHSIM_MATERIALS``, else the checkout's ``materials/`` (source or editable
+    install), else the copy an installed wheel carries in the package (``quenchsim/_data/materials``)."""
     env = os.environ.get("QUENCHSIM_MATERIALS")
-    return Path(env) if env else Path(__file__).resolve().parents[2] / "materials"
+    if env:
+        return Path(env)
+    package = Path(__file__).resolve().parents[1]
+    checkout = package.parent / "materials"
+    return checkout if checkout.is_dir() else package / "_data" / "materials"
 
 
 def load_data_file(name: str, subdir: str = "", field: str = "material") -> dict[str, Any]:
