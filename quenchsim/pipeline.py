@@ -34,7 +34,8 @@ from quenchsim.geometry.profile import MM, Profile
 from quenchsim.materials import load_material, thermal_properties
 from quenchsim.results import RunWriter
 from quenchsim.results.postprocess import NodalProjection, phase_statistics
-from quenchsim.results.summary import hardness_summary, probe_times, residual_stress_summary, residual_traverse
+from quenchsim.results.summary import (FinalSection, hardness_summary, probe_times, residual_stress_summary,
+                                       residual_traverse)
 from quenchsim.thermal import AxisymmetricP2, SurfaceTemperatureHTC, ThermalSolver, parse_htc_table
 
 log = logging.getLogger("quenchsim")
@@ -201,7 +202,7 @@ class QuenchRun:
             log.error("run stopped at t = %.4g s: %s", self.thermal.time_s, exc)
         finally:
             probes.close()
-        self.writer.final_3d(vtk.write(self.thermal.time_s, self.nodal_fields()))
+        self.writer.final_3d(self._final_frame(vtk))
         time_arr = np.asarray(self.times)
         probe_T = {n: np.array([row[i] for row in self.probe_rows]) for i, n in enumerate(self.probe_names)}
         try:
@@ -324,15 +325,54 @@ class QuenchRun:
             raise SolverError("the stress solver did not converge in the final step to room temperature")
         self.thermal.T, self.thermal.T_qp, self.thermal.phase_state = T_room, T_qp, state
 
+    # -- the final part -------------------------------------------------------------------------
+    def _rigid_axial_shift_m(self, vertices_m: np.ndarray) -> float:
+        """Axial shift of the section's volume centroid from the "before" section: a rigid translation set by
+        the solver's fixed point, not a distortion (removed from every final-part output)."""
+        def centroid_z(p: np.ndarray) -> float:
+            tri = p[:, self.section.mesh.t]                               # (2, 3, ne)
+            area = 0.5 * np.abs((tri[0, 1] - tri[0, 0]) * (tri[1, 2] - tri[1, 0])
+                                - (tri[0, 2] - tri[0, 0]) * (tri[1, 1] - tri[1, 0]))
+            weight = area * tri[0].mean(axis=0)                          # r dA: the ring's volume
+            return float(np.sum(weight * tri[1].mean(axis=0)) / np.sum(weight))
+        return centroid_z(vertices_m) - centroid_z(self.before_mesh.p)
+
+    def final_vertices(self) -> np.ndarray:
+        """Mesh vertices (2, nv) of the part after the run, without rigid axial translation: the deformed
+        section when the stress is solved; otherwise the "before" section (no distortion computed)."""
+        if self.mech is None:
+            return self.before_mesh.p.copy()
+        p = self.section.mesh.p + self.mech.vertex_displacement().T
+        p[1] -= self._rigid_axial_shift_m(p)
+        return p
+
+    def final_section(self) -> FinalSection:
+        p = self.final_vertices()
+        if self.mech is None:
+            outline = mechanics.section_outline(self.before_mesh)
+        else:
+            outline = mechanics.section_outline(self.section.mesh, self.mech.displacement_m)
+            outline[:, 1] -= self._rigid_axial_shift_m(self.section.mesh.p + self.mech.vertex_displacement().T)
+        return FinalSection.of(p, self.section.mesh.t, outline)
+
+    def _final_frame(self, vtk: Any) -> Path:
+        """The last VTK frame: on the "before" (room-temperature, pre-quench) section, with ``displacement_m``
+        carrying it to the final part (warp by 1 shows the part, by 10 its distortion x10); the frames
+        before it are on the austenitised section the quench starts from, displaced from there."""
+        fields = self.nodal_fields()
+        if self.mech is not None:
+            d = self.final_vertices() - self.before_mesh.p
+            fields["displacement_m"] = np.column_stack([d.T, np.zeros(d.shape[1])])
+        return vtk.write(self.thermal.time_s, fields, points_rz=self.before_mesh.p)
+
     # -- summary --------------------------------------------------------------------------------
-    def mechanics_summary(self) -> dict[str, Any]:
+    def mechanics_summary(self, final: FinalSection) -> dict[str, Any]:
         """Dimensions before/after, residual stresses at mid-width, traverse and outline files."""
         before = mechanics.ring_dimensions(self.before_mesh)
         after = mechanics.ring_dimensions(self.section.mesh, self.mech.displacement_m)
-        r_mm, hoop, axial = residual_traverse(self.profile, self.projection.p1, self.mech.nodal_fields())
+        r_mm, hoop, axial = residual_traverse(final, self.mech.nodal_fields())
         self.writer.residual_traverse(r_mm, hoop, axial)
-        self.writer.outline(mechanics.section_outline(self.before_mesh) / MM,
-                            mechanics.section_outline(self.section.mesh, self.mech.displacement_m) / MM)
+        self.writer.outline(mechanics.section_outline(self.before_mesh) / MM, final.outline_m / MM)
         return {"dimensions_mm": mechanics.dimension_change(before, after),
                 "residual_stress_MPa": residual_stress_summary(hoop, axial)}
 
@@ -340,11 +380,12 @@ class QuenchRun:
         fields = self.nodal_fields()
         out: dict[str, Any] = {"case": self.case.name, "condition": self.case.condition}
         out["probes"] = probe_times(time_s, probe_T)
-        out["hardness"], traverse = hardness_summary(self.profile, self.projection.p1, fields["hardness_HRC"])
+        final = self.final_section()
+        out["hardness"], traverse = hardness_summary(self.profile, self.projection.p1, final, fields["hardness_HRC"])
         self.writer.hardness_traverse(traverse["bore"][0], traverse["bore"][1], traverse["od"][1])
         out["phases_final"] = phase_statistics(self.thermal.fractions(), self.fe.r_dx)
         if self.mech is not None:
-            out.update(self.mechanics_summary())
+            out.update(self.mechanics_summary(final))
         out["energy"] = {"heat_extracted_J": self.counts["heat_out_J"], "latent_released_J": self.counts["latent_J"]}
         out["solver"] = {"wall_time_s": time.perf_counter() - wall0, "stage_time_s": dict(self.timings),
                          "steps": self.counts["steps"], "rejected_steps": self.counts["rejected"], "dofs": int(self.fe.n_dofs),

@@ -8,7 +8,7 @@ from quenchsim.bath.outline import ring_section_points
 from reference_cases import case_a_bath_spec
 
 POINTS = ring_section_points(0.2183, 0.301, 0.173, chamfer_m=0.002, spacing_m=8e-3)
-speed = st.floats(min_value=0.0, max_value=20000.0, allow_nan=False)
+speed = st.floats(min_value=0.0, max_value=10000.0, allow_nan=False)   # x5 stays within the 50 m/s limit
 factor = st.floats(min_value=1.0, max_value=5.0, allow_nan=False)
 
 

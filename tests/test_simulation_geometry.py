@@ -19,3 +19,31 @@ def test_thermal_section_and_cooling_do_not_depend_on_solving_the_stress(tmp_pat
     t_on = with_stress.run().probe_T_C["mid"]
     t_off = thermal_only.run().probe_T_C["mid"]
     np.testing.assert_allclose(t_off, t_on, rtol=1e-12)
+
+
+def test_outputs_are_on_the_final_part_at_room_temperature(tmp_path):
+    """A through-hardened small ring: the HRC58 depth is measured from the final surface and never exceeds
+    the final wall; the last VTK frame is the "before" section displaced to the final part; the final
+    part carries no rigid axial translation (its volume centroid stays at the "before" height)."""
+    import meshio
+
+    from quenchsim.results import load
+
+    case = warm_ring()
+    case["mechanics"] = {"enabled": True, "plasticity": False, "trip": False}   # the peer steel is elastic
+    case["air"] = {"time_s": 20000.0, "temperature_C": 20.0, "until_max_C": 40.0, "htc_model": "table",
+                   "htc_table": {"T_C": [0.0, 900.0], "h_W_m2K": [400.0, 400.0], "ambient_C": 20.0}}
+    run = QuenchRun(case_from_dict(case), tmp_path, progress=False)
+    summary = run.run().summary
+    assert summary["end_state"]["at_room_temperature"]
+    after = summary["dimensions_mm"]["after"]
+    wall_mm = 0.5 * (after["od"] - after["id"])
+    depth = summary["hardness"]["depth_mm"]["HRC58_bore_mid"]
+    assert summary["hardness"]["through_hardened"] and abs(depth - wall_mm) < 2e-3   # the whole final wall
+    traverse = load(tmp_path).hardness_traverse
+    assert traverse["depth_mm"].max() <= wall_mm
+    final = run.final_vertices()
+    assert abs(run._rigid_axial_shift_m(final)) < 1e-12
+    last = meshio.read(sorted(tmp_path.glob("results_*.vtu"))[-1])
+    np.testing.assert_allclose(last.points[:, :2].T, run.before_mesh.p, atol=1e-15)
+    np.testing.assert_allclose((last.points[:, :2] + last.point_data["displacement_m"][:, :2]).T, final, atol=1e-15)

@@ -24,10 +24,11 @@ class VtkSeries:
         self.name = name
         self.frames: list[tuple[float, str]] = []
 
-    def write(self, time_s: float, point_data: dict[str, np.ndarray]) -> Path:
+    def write(self, time_s: float, point_data: dict[str, np.ndarray], points_rz: np.ndarray | None = None) -> Path:
+        """One frame; ``points_rz`` (2, n) replaces the series' point coordinates for this frame only."""
         fname = f"{self.name}_{len(self.frames):04d}.vtu"
-        meshio.write(self.out_dir / fname, meshio.Mesh(self.points, self.cells, point_data=point_data),
-                     binary=True)
+        points = self.points if points_rz is None else np.column_stack([points_rz.T, np.zeros(points_rz.shape[1])])
+        meshio.write(self.out_dir / fname, meshio.Mesh(points, self.cells, point_data=point_data), binary=True)
         self.frames.append((time_s, fname))
         self._write_pvd()
         return self.out_dir / fname

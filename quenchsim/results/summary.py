@@ -6,6 +6,7 @@ Pure functions of arrays, a section profile and the P1 basis of the nodal fields
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -31,40 +32,55 @@ def _t_between(time_s: np.ndarray, T: np.ndarray, upper: float, lower: float) ->
     return None if a is None or b is None else b - a
 
 
-def surface_r_at(profile: Profile, z: float, inner: bool) -> float:
-    """Radius where the horizontal line at height z meets the bore (inner) or the OD surface."""
-    poly = profile.polygon(512)
-    x, y = poly[:, 0], poly[:, 1]
+@dataclass(frozen=True)
+class FinalSection:
+    """The part as measured after the quench, at room temperature: its closed outline (n, 2) and a P1 basis
+    on the mesh in those coordinates (vertex order of the run's mesh, so nodal P1 fields apply as they are).
+    Traverses and depths are taken on it: a depth is measured from the final surface."""
+
+    outline_m: np.ndarray
+    p1: skfem.Basis
+
+    @staticmethod
+    def of(vertices_m: np.ndarray, triangles: np.ndarray, outline_m: np.ndarray) -> "FinalSection":
+        return FinalSection(outline_m, skfem.Basis(skfem.MeshTri(vertices_m, triangles), skfem.ElementTriP1()))
+
+    def mid_width(self) -> tuple[float, float, float]:
+        """(z at mid-width, bore radius there, OD radius there), metres."""
+        pts = self.outline_m[np.isfinite(self.outline_m[:, 0])]
+        z_mid = 0.5 * (pts[:, 1].min() + pts[:, 1].max())
+        r = _polygon_cuts(self.outline_m, z_mid)
+        return z_mid, float(r.min()), float(r.max())
+
+
+def _polygon_cuts(outline_m: np.ndarray, z: float) -> np.ndarray:
+    """Radii where the horizontal line at height z crosses a closed outline (loops joined by NaN rows)."""
+    x, y = outline_m[:, 0], outline_m[:, 1]
     x2, y2 = np.roll(x, -1), np.roll(y, -1)
-    hit = (y - z) * (y2 - z) <= 0
-    hit &= y != y2
-    rs = x[hit] + (z - y[hit]) * (x2[hit] - x[hit]) / (y2[hit] - y[hit])
-    return float(rs.min() if inner else rs.max())
+    ok = np.isfinite(x) & np.isfinite(x2)
+    hit = ok & ((y - z) * (y2 - z) <= 0) & (y != y2)
+    return x[hit] + (z - y[hit]) * (x2[hit] - x[hit]) / (y2[hit] - y[hit])
 
 
-def mid_width(profile: Profile) -> tuple[float, float, float]:
-    """(z at mid-width, bore radius there, OD radius there), metres."""
-    r0, r1, z0, z1 = profile.bounds()
-    z_mid = 0.5 * (z0 + z1)
-    return z_mid, surface_r_at(profile, z_mid, inner=True), surface_r_at(profile, z_mid, inner=False)
-
-
-def hardness_traverse(profile: Profile, p1: skfem.Basis, hrc_nodal: np.ndarray, side: str,
+def hardness_traverse(final: FinalSection, hrc_nodal: np.ndarray, side: str,
                       n: int = 400) -> tuple[np.ndarray, np.ndarray]:
-    """HRC along mid-width from the bore ("bore") or OD ("od") surface into the wall: (depth_mm, HRC)."""
-    z_mid, r_bore, r_od = mid_width(profile)
+    """HRC along mid-width from the bore ("bore") or OD ("od") surface of the final part into the wall:
+    (depth below that surface in mm, HRC)."""
+    z_mid, r_bore, r_od = final.mid_width()
     depth = np.linspace(1e-6, r_od - r_bore - 1e-6, n)   # 1 um inside: the traverse ends on the surfaces
     r = r_bore + depth if side == "bore" else r_od - depth
-    probe = p1.probes(np.vstack([r, np.full_like(r, z_mid)]))
+    probe = final.p1.probes(np.vstack([r, np.full_like(r, z_mid)]))
     return depth / MM, probe @ hrc_nodal
 
 
-def hardness_summary(profile: Profile, p1: skfem.Basis, hrc_nodal: np.ndarray
+def hardness_summary(profile: Profile, p1: skfem.Basis, final: FinalSection, hrc_nodal: np.ndarray
                      ) -> tuple[dict[str, Any], dict[str, tuple[np.ndarray, np.ndarray]]]:
-    """The summary's ``hardness`` table and the two mid-width traverses {"bore": ..., "od": ...}."""
+    """The summary's ``hardness`` table and the two mid-width traverses {"bore": ..., "od": ...}: surface
+    hardness per named segment at its middle (``profile`` and ``p1`` of the run's mesh), depths, traverses
+    and the core on the final part."""
     depth, traverse = {}, {}
     for side in ("bore", "od"):
-        d, h = hardness_traverse(profile, p1, hrc_nodal, side)
+        d, h = hardness_traverse(final, hrc_nodal, side)
         traverse[side] = (d, h)
         depth[f"HRC58_{side}_mid"] = depth_below(d, h, HRC_THRESHOLD)
     surface = {}
@@ -75,19 +91,19 @@ def hardness_summary(profile: Profile, p1: skfem.Basis, hrc_nodal: np.ndarray
         tangent = (b - a) / np.linalg.norm(b - a)
         pt = mid + 1e-6 * np.array([-tangent[1], tangent[0]])   # left of a counter-clockwise outline = inside
         surface[f"{seg.name}_mid"] = float((p1.probes(pt.reshape(2, 1)) @ hrc_nodal)[0])
-    z_mid, r_bore, r_od = mid_width(profile)
-    core = float((p1.probes(np.array([[0.5 * (r_bore + r_od)], [z_mid]])) @ hrc_nodal)[0])
+    z_mid, r_bore, r_od = final.mid_width()
+    core = float((final.p1.probes(np.array([[0.5 * (r_bore + r_od)], [z_mid]])) @ hrc_nodal)[0])
     table = {"depth_mm": depth, "surface_HRC": surface, "core_HRC": core, "threshold_HRC": HRC_THRESHOLD,
              "through_hardened": bool(np.nanmin(hrc_nodal) >= HRC_THRESHOLD)}
     return table, traverse
 
 
-def residual_traverse(profile: Profile, p1: skfem.Basis, fields: dict[str, np.ndarray],
+def residual_traverse(final: FinalSection, fields: dict[str, np.ndarray],
                       n: int = 200) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Hoop and axial stress (MPa) across the wall at mid-width: (r_mm, hoop, axial)."""
-    z_mid, r_bore, r_od = mid_width(profile)
+    """Hoop and axial stress (MPa) across the wall of the final part at mid-width: (r_mm, hoop, axial)."""
+    z_mid, r_bore, r_od = final.mid_width()
     r = np.linspace(r_bore + 1e-6, r_od - 1e-6, n)
-    probe = p1.probes(np.vstack([r, np.full_like(r, z_mid)]))
+    probe = final.p1.probes(np.vstack([r, np.full_like(r, z_mid)]))
     return r / MM, probe @ fields["stress_tt_Pa"] / 1e6, probe @ fields["stress_zz_Pa"] / 1e6
 
 
