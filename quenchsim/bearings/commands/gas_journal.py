@@ -148,7 +148,7 @@ def _stability(args: argparse.Namespace) -> dict:
 def _bench(args: argparse.Namespace) -> dict:
     for lam in args.bearing_number:
         require(lam >= 0.0, "--bearing-number", lam, "must be >= 0")
-    return run_benchmark(args.levels, args.bearing_number, args.methods, args.budget)
+    return run_benchmark(args.levels, args.bearing_number, args.methods, args.budget, progress=True)
 
 
 def run(args: argparse.Namespace) -> dict:
