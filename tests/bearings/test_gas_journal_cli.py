@@ -54,6 +54,10 @@ def test_bench_json(capsys):
         ["orbit", "--bearing-number", "3", "--load", "0.7"],
         ["orbit", "--bearing-number", "3", "--load", "0.7", "--mass-parameter", "-1"],
         ["stability", "--bearing-number", "-2"],
+        ["stability", "--bearing-number", "1", "--mass-range", "5", "1"],
+        ["stability", "--bearing-number", "1", "--max-iterations", "1"],
+        ["stability", "--bearing-number", "1", "--max-time-s", "0"],
+        ["orbit", "--bearing-number", "3", "--load", "0.7", "--mass", "0.1", "--max-time-s", "0"],
     ],
 )
 def test_bad_input_exit_2(capsys, argv):
@@ -75,11 +79,40 @@ def test_orbit_json_and_csv(capsys, tmp_path):
     assert 0.0 < data["eccentricity"] < 1.0
 
 
+def _strict_json(text):
+    """json.loads that refuses NaN / Infinity (not JSON)."""
+    return json.loads(text, parse_constant=lambda name: pytest.fail(f"{name} in JSON output"))
+
+
 @pytest.mark.slow
 def test_stability_json(capsys):
     code, out = _run(capsys, "stability", "--bearing-number", "1", "--grooves", "20", "--groove-angle", "30",
                      "--groove-depth", "1.1", "--groove-width-ratio", "0.5", "--groove-length-ratio", "0.5",
-                     "--grooved", "rotor", "--level", "3")
+                     "--grooved", "rotor", "--level", "3", "--rel-tol", "0.1", "--max-time-s", "600")
     assert code == 0
-    data = json.loads(out.out)
+    data = _strict_json(out.out)
+    assert data["status"] == "bracketed"
     assert data["stable_below"] < data["critical_mass_parameter"] < data["unstable_above"]
+
+
+def test_stability_of_unloaded_plain_bearing_answers_unstable_in_range(capsys):
+    code, out = _run(capsys, "stability", "--bearing-number", "1", "--level", "2", "--duration", "20",
+                     "--mass-range", "0.5", "50")
+    assert code == 0
+    data = _strict_json(out.out)
+    assert data["status"] == "unstable_in_range" and data["mass_range"] == [0.5, 50.0]
+    assert data["critical_mass_parameter"] is None and data["stable_below"] is None
+    assert [t["mass_parameter"] for t in data["trials"]] == [50.0, 0.5]
+    # progress on stderr: one bar per orbit naming the stage and the mass, then the message line
+    assert "stability range end orbit 1 Mbar 50" in out.err and "orbit 2 Mbar 0.5" in out.err
+    assert out.err.splitlines()[-1] == data["message"]
+    assert data["message"].startswith("unstable for every mass in range")
+
+
+def test_stability_time_budget(capsys):
+    code, out = _run(capsys, "stability", "--bearing-number", "1", "--level", "2", "--duration", "20",
+                     "--max-time-s", "0.05")
+    assert code == 0
+    data = _strict_json(out.out)
+    assert data["status"] == "time_budget" and data["orbits"] == 0
+    assert "time budget of 0.05 s reached" in out.err.splitlines()[-1]

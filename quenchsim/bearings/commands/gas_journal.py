@@ -6,17 +6,23 @@ Parses arguments and calls quenchsim.bearings.gas_journal; returns one JSON-seri
 from __future__ import annotations
 
 import argparse
+import math
 import pathlib
+import sys
 
 from quenchsim.bearings.gas_journal.benchmark import run_benchmark, sor_factor, warm_up
 from quenchsim.bearings.gas_journal.geometry import Bearing, Grooves, effective_ratios
-from quenchsim.bearings.gas_journal.orbit import mass_from_parameter, orbit
+from quenchsim.bearings.gas_journal.orbit import OrbitProgress, mass_from_parameter, orbit
 from quenchsim.bearings.gas_journal.reynolds import METHODS
-from quenchsim.bearings.gas_journal.stability import critical_mass_parameter
+from quenchsim.bearings.gas_journal.stability import MASS_PARAMETER_RANGE, critical_mass_parameter
 from quenchsim.bearings.gas_journal.static import static_characteristics
 from quenchsim.errors import InputError, require
 
 ACTIONS = ("static", "orbit", "stability", "bench")
+# stability: default budgets, so the search answers within 2 minutes on a 2-core machine (an orbit of
+# the grooved rotor A-1 at level 3 takes ~9 s, its search 9-10 orbits)
+STABILITY_MAX_TIME_S = 110.0
+STABILITY_MAX_ORBITS = 24
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -38,12 +44,22 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="grid level m: (10 2^(m-1)+1) x (2 2^(m-1)+1) nodes (default: static 5, orbit 3)")
     parser.add_argument("--method", choices=METHODS, default="multigrid", help="static: solver")
     parser.add_argument("--sor-omega", type=float, help="static --method sor: over-relaxation factor")
-    parser.add_argument("--load", type=float, help="orbit: load W / (pa L D) (downward)")
+    parser.add_argument("--load", type=float, help="orbit: load W / (pa L D) (downward); stability: "
+                        "optional, default 0 (vertical rotor)")
     mass = parser.add_mutually_exclusive_group()
     mass.add_argument("--mass", type=float, help="orbit: M = m c omega^2 / (8 pa L r)")
     mass.add_argument("--mass-parameter", type=float, help="orbit: Mbar = m pa c^5 / (2 mu^2 L r^5)")
     parser.add_argument("--duration", type=float, default=None, help="orbit/stability: T = omega t / 2 span")
     parser.add_argument("--start-eccentricity", type=float, default=0.1, help="stability: release eccentricity")
+    parser.add_argument("--mass-range", type=float, nargs=2, default=list(MASS_PARAMETER_RANGE),
+                        metavar=("LO", "HI"), help="stability: Mbar range searched, its ends are run first "
+                        f"(default {MASS_PARAMETER_RANGE[0]:g} {MASS_PARAMETER_RANGE[1]:g})")
+    parser.add_argument("--rel-tol", type=float, default=0.05, help="stability: bracket width hi/lo - 1 (default 0.05)")
+    parser.add_argument("--max-time-s", type=float, default=None,
+                        help=f"stability: wall-time budget, s (default {STABILITY_MAX_TIME_S:g}); orbit: "
+                        "optional")
+    parser.add_argument("--max-iterations", type=int, default=STABILITY_MAX_ORBITS,
+                        help=f"stability: orbit budget (default {STABILITY_MAX_ORBITS})")
     parser.add_argument("--orbit-csv", default="gas_journal_orbit.csv", help="orbit: CSV output path")
     parser.add_argument("--levels", type=int, nargs="+", default=[3, 4, 5, 6], help="bench: grid levels")
     parser.add_argument("--methods", choices=METHODS, nargs="+", default=list(METHODS), help="bench: methods")
@@ -94,24 +110,45 @@ def _orbit(args: argparse.Namespace) -> dict:
     else:
         require(args.mass_parameter > 0.0, "--mass-parameter", args.mass_parameter, "must be > 0")
         mass = mass_from_parameter(args.mass_parameter, lam)
-    res = orbit(_bearing(args), lam, args.load, mass, level=args.level or 3, duration=args.duration or 100.0)
+    if args.max_time_s is not None:
+        require(args.max_time_s > 0.0, "--max-time-s", args.max_time_s, "must be > 0")
+    duration = args.duration or 100.0
+    with OrbitProgress(duration, f"orbit M {mass:.4g}") as bar:
+        res = orbit(_bearing(args), lam, args.load, mass, level=args.level or 3, duration=duration,
+                    on_step=bar.update, max_wall_time_s=math.inf if args.max_time_s is None else args.max_time_s)
+        bar.outcome = res.outcome()
     path = pathlib.Path(args.orbit_csv)
     res.to_csv(path)
     return {"eccentricity": res.eccentricity, "attitude_deg": res.attitude_deg, "stable": bool(res.stable),
             "settled": bool(res.settled), "whirl_ratio": res.whirl_ratio, "orbit_csv": str(path)}
 
 
+def _finite(value: float | None) -> float | None:
+    """JSON has no NaN/Infinity: non-finite numbers become null."""
+    return value if value is not None and math.isfinite(value) else None
+
+
 def _stability(args: argparse.Namespace) -> dict:
-    res = critical_mass_parameter(_bearing(args), _single(args), level=args.level or 3,
-                                  start_eccentricity=args.start_eccentricity, duration=args.duration or 40.0)
-    return {"critical_mass_parameter": res.critical_mass_parameter, "stable_below": res.stable_below,
-            "unstable_above": res.unstable_above, "whirl_ratio": res.whirl_ratio, "orbits": len(res.trials)}
+    res = critical_mass_parameter(_bearing(args), _single(args), level=args.level or 3, load=args.load or 0.0,
+                                  start_eccentricity=args.start_eccentricity, duration=args.duration or 40.0,
+                                  rel_tol=args.rel_tol, max_trials=args.max_iterations,
+                                  mass_range=tuple(args.mass_range),
+                                  max_time_s=STABILITY_MAX_TIME_S if args.max_time_s is None else args.max_time_s,
+                                  progress=True)
+    if args.json:
+        print(res.message, file=sys.stderr)
+    return {"status": res.status, "message": res.message,
+            "critical_mass_parameter": _finite(res.critical_mass_parameter), "stable_below": res.stable_below,
+            "unstable_above": res.unstable_above, "whirl_ratio": _finite(res.whirl_ratio),
+            "mass_range": list(res.mass_range), "orbits": len(res.trials), "wall_time_s": res.wall_time_s,
+            "trials": [{"mass_parameter": m, "stable": bool(s), "growth_rate": _finite(g), "whirl_ratio": _finite(w)}
+                       for m, s, g, w in res.trials]}
 
 
 def _bench(args: argparse.Namespace) -> dict:
     for lam in args.bearing_number:
         require(lam >= 0.0, "--bearing-number", lam, "must be >= 0")
-    return run_benchmark(args.levels, args.bearing_number, args.methods, args.budget)
+    return run_benchmark(args.levels, args.bearing_number, args.methods, args.budget, progress=True)
 
 
 def run(args: argparse.Namespace) -> dict:

@@ -11,9 +11,11 @@ is triggered once before timing and reported separately.
 from __future__ import annotations
 
 import math
+import sys
 import time
 
 import numpy as np
+from tqdm import tqdm
 
 from quenchsim.bearings.gas_journal.geometry import Bearing, Grooves, grid_for_level
 from quenchsim.bearings.gas_journal.reynolds import METHODS, operator_hierarchy, solve
@@ -111,11 +113,16 @@ def run_case(level: int, bearing_number: float, method: str, budget_s: float = 6
 
 
 def run_benchmark(levels: list[int], bearing_numbers: list[float], methods: list[str] | None = None,
-                  budget_s: float = 60.0) -> dict:
-    """All (level, Lambda, method) rows plus the JIT warm-up time."""
+                  budget_s: float = 60.0, progress: bool = False) -> dict:
+    """All (level, Lambda, method) rows plus the JIT warm-up time; ``progress``: a tqdm bar on stderr over
+    the runs, naming the one under way."""
     jit = warm_up()
     methods = methods or list(METHODS)
     omegas = {lam: tuned_sor_factors(lam, levels) if "sor" in methods else {} for lam in bearing_numbers}
-    rows = [run_case(level, lam, method, budget_s, omegas[lam].get(level, 1.0)) for level in levels
-            for lam in bearing_numbers for method in methods]
+    cases = [(level, lam, method) for level in levels for lam in bearing_numbers for method in methods]
+    rows = []
+    with tqdm(cases, desc="bench", unit="run", file=sys.stderr, disable=not progress) as bar:
+        for level, lam, method in bar:
+            bar.set_postfix_str(f"level {level}, Lambda {lam:g}, {method}")
+            rows.append(run_case(level, lam, method, budget_s, omegas[lam].get(level, 1.0)))
     return {"results": rows, "jit_warm_up_s": jit}

@@ -12,9 +12,13 @@ is the film of the next step. Start at rest at a given position with P = 1 (refe
 from __future__ import annotations
 
 import math
+import sys
+import time as clock
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from tqdm import tqdm
 
 from quenchsim.bearings.gas_journal.forces import attitude_deg, film_force
 from quenchsim.bearings.gas_journal.geometry import Bearing, grid_for_level
@@ -41,6 +45,37 @@ STEPS_PER_GROOVE_PASSAGE = 4  # largest time step of a grooved-rotor orbit: 1/4 
 CENTRE_WINDOW = 4.0 * math.pi  # two half-frequency whirl periods (the rotor turns 2 rad per unit T)
 
 
+class WallTimeExceeded(SolverError):
+    """An orbit stopped by its wall-time budget; ``time`` is the dimensionless time T it reached."""
+
+    def __init__(self, time: float, duration: float, budget_s: float) -> None:
+        self.time = time
+        self.budget_s = budget_s
+        super().__init__(f"orbit stopped at T = {time:.4g} of {duration:g}: wall-time budget of {budget_s:.3g} s "
+                         "reached")
+
+
+class OrbitProgress:
+    """A tqdm bar on stderr over an orbit's dimensionless time T, used as a context manager: pass
+    ``update`` as ``orbit(on_step=...)`` and set ``outcome``; on exit the bar is left as one line saying
+    what the orbit gave (or where it stopped, when it raised)."""
+
+    def __init__(self, duration: float, desc: str, enabled: bool = True) -> None:
+        self.bar = tqdm(total=duration, desc=desc, unit="T", file=sys.stderr, disable=not enabled, mininterval=0.5,
+                        bar_format="{desc}: {percentage:3.0f}%|{bar:20}| T {n:.1f}/{total:.0f} [{elapsed}]{postfix}")
+        self.outcome = ""
+
+    def update(self, time: float, steps: int) -> None:
+        self.bar.update(time - self.bar.n)
+
+    def __enter__(self) -> OrbitProgress:
+        return self
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        self.bar.set_postfix_str(self.outcome if exc is None else f"stopped: {exc}", refresh=False)
+        self.bar.close()
+
+
 def mass_from_parameter(mass_parameter: float, bearing_number: float) -> float:
     """M = Mbar Lambda^2 / 144 (reference section 1)."""
     return mass_parameter * bearing_number ** 2 / 144.0
@@ -63,6 +98,12 @@ class OrbitResult:
     growth_rate: float
     steps: int
     rejected: int
+
+    def outcome(self) -> str:
+        """One phrase for progress lines: stable/unstable with the growth rate, or the touch-down time."""
+        if math.isinf(self.growth_rate):
+            return f"UNSTABLE (touch-down at T = {self.time[-1]:.3g}), {self.steps} steps"
+        return f"{'stable' if self.stable else 'UNSTABLE'}, growth {self.growth_rate:+.3g}/T, {self.steps} steps"
 
     def to_csv(self, path) -> None:
         """Write T, e_x, e_y, F_x, F_y columns."""
@@ -98,7 +139,8 @@ def orbit(bearing: Bearing, bearing_number: float, load: float, mass: float, lev
           duration: float = 60.0, start: tuple[float, float] = (0.0, 0.0), load_angle_deg: float = -90.0,
           method: str = "multigrid", rtol: float = 1e-4, atol: float = 1e-6, max_step: float = 0.5,
           settle_tolerance: float = 1e-5, stop_when_settled: bool = True,
-          initial_film: str = "ambient") -> OrbitResult:
+          initial_film: str = "ambient", on_step: Callable[[float, int], None] | None = None,
+          max_wall_time_s: float = math.inf) -> OrbitResult:
     """Integrate the rotor orbit under the constant load ``load`` (= W/(pa L D), towards
     ``load_angle_deg``) with dimensionless mass M = ``mass`` from rest at ``start`` with P = 1
     (``initial_film="ambient"``, the reference's start) or with the steady film of the held rotor
@@ -111,6 +153,9 @@ def orbit(bearing: Bearing, bearing_number: float, load: float, mass: float, lev
     position over the last CENTRE_WINDOW moved less than 10 * settle_tolerance from the window before
     while the orbit shrinks. ``eccentricity``/``attitude_deg`` are those of the final position when
     settled at rest, else of the orbit centre (mean position over the last window).
+
+    ``on_step(T, accepted_steps)`` is called after every accepted step (progress display); past
+    ``max_wall_time_s`` seconds of wall time the orbit raises :class:`WallTimeExceeded`.
     """
     check_inputs(bearing_number, float(np.hypot(*start)))
     require(np.isfinite(mass) and mass > 0.0, "mass", mass, "must be > 0 (M = m c omega^2 / (8 pa L r))")
@@ -141,7 +186,10 @@ def orbit(bearing: Bearing, bearing_number: float, load: float, mass: float, lev
     quiet_since = None
     settled = False
     touched = False
+    started = clock.perf_counter()
     while t < duration - 1e-12:
+        if clock.perf_counter() - started > max_wall_time_s:
+            raise WallTimeExceeded(t, duration, max_wall_time_s)
         h = min(h, duration - t)
         ks = [k_first]
         stage_states = [state]
@@ -174,6 +222,8 @@ def orbit(bearing: Bearing, bearing_number: float, load: float, mass: float, lev
             xs.append(y[0])
             ys.append(y[1])
             forces.append(force)
+            if on_step is not None:
+                on_step(t, steps)
             if np.hypot(y[0], y[1]) >= CONTACT_ECCENTRICITY:
                 touched = True
                 break

@@ -69,10 +69,14 @@ def orbits(runs: Sequence[tuple[str, np.ndarray, np.ndarray]], path: pathlib.Pat
 
 def stability_trials(trials: Sequence[tuple[float, bool, float, float]], critical: float, title: str,
                      path: pathlib.Path) -> pathlib.Path:
-    """Orbit growth rate vs mass parameter for every bisection trial (stability map at one Lambda)."""
+    """Orbit growth rate vs mass parameter for every bisection trial (stability map at one Lambda); an
+    orbit that touched down (infinite growth rate) is a red triangle at the top edge."""
     fig, ax = subplots(figsize=(6, 3.6))
     for mbar, stable, growth, _ in trials:
-        ax.semilogx(mbar, growth, "o", color="tab:green" if stable else "tab:red")
+        if np.isinf(growth):
+            ax.semilogx(mbar, 1.0, "^", color="tab:red", transform=ax.get_xaxis_transform(), clip_on=False)
+        else:
+            ax.semilogx(mbar, growth, "o", color="tab:green" if stable else "tab:red")
     ax.axvline(critical, color="k", ls="--", label=f"critical Mbar = {critical:.3g}")
     ax.axhline(0.0, color="gray", lw=0.8)
     ax.set_xlabel("mass parameter Mbar")

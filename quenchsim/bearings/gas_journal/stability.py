@@ -1,79 +1,172 @@
-"""Whirl stability threshold by bisection on nonlinear orbits.
+"""Whirl stability threshold by bisection on nonlinear orbits, bounded in mass, orbits and wall time.
 
 The critical mass parameter Mbar = m pa c^5 / (2 mu^2 L r^5) (reference section 1; M = Mbar Lambda^2 / 144)
 separates rotors whose orbit about the equilibrium decays (stable) from those whose orbit grows into
 a whirl (half-frequency whirl onset). Each trial releases the rotor at rest from ``start_eccentricity``
 (vertical rotor: no external load unless given) and classifies the orbit by the growth rate of its
-radius (orbit.whirl_analysis); the bracket [stable, unstable] is first found by factors of 4 and then
-halved in log(Mbar) until hi / lo <= 1 + rel_tol.
+radius (orbit.whirl_analysis).
+
+The search assumes one threshold in ``mass_range``: stable below, unstable above (a heavier rotor
+whirls). It first runs the two ends of the range: when they do not bracket a threshold it stops there
+-- e.g. an unloaded plain bearing, whose concentric state has the half-frequency whirl at every mass
+(its growth rate falls towards 0 only as Mbar -> 0), is "unstable for every mass in range". Otherwise
+the bracket [stable, unstable] is found from ``first_guess`` by factors of 4 (bounded by the ends)
+and then halved in log(Mbar) until hi / lo <= 1 + rel_tol. The search stops with the bracket found
+so far when it has run ``max_trials`` orbits or ``max_time_s`` seconds (an orbit running past the
+deadline is abandoned).
+
+Default range MASS_PARAMETER_RANGE = [0.1, 100]: the light end is where the orbits get expensive
+(the step size follows the rotor's natural period, ~ sqrt(M): 0.1 costs ~1600 steps at Lambda 1 over
+T = 40), and a heavy rotor whirls slowly: rotor A-1 at Lambda 1 touches down by T = 21 at Mbar 100,
+but at Mbar 1000 its orbit grows by only 1e-4 per unit T within T = 40, too close to zero to classify.
+Search heavier rotors with a longer ``duration``.
 """
 
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field
 
 from quenchsim.bearings.gas_journal.geometry import Bearing
-from quenchsim.bearings.gas_journal.orbit import OrbitResult, mass_from_parameter, orbit
+from quenchsim.bearings.gas_journal.orbit import OrbitProgress, WallTimeExceeded, mass_from_parameter, orbit
 from quenchsim.bearings.gas_journal.reynolds import check_inputs
-from quenchsim.errors import SolverError, require
+from quenchsim.errors import require
+
+MASS_PARAMETER_RANGE = (0.1, 100.0)  # default Mbar range (rotor A-1 at Lambda 1: threshold 9.1, see module docstring)
+
+# status of a search: a threshold, no threshold in range (three ways), or a budget ran out first
+BRACKETED = "bracketed"
+UNSTABLE_IN_RANGE = "unstable_in_range"
+STABLE_IN_RANGE = "stable_in_range"
+INVERTED = "inverted"
+TIME_BUDGET = "time_budget"
+ITERATION_BUDGET = "iteration_budget"
 
 
 @dataclass
 class StabilityResult:
-    """Critical mass parameter with its final bracket and every trial (Mbar, stable, growth, whirl ratio)."""
+    """Outcome of the search: ``status`` (module constants), a one-line ``message``, the critical Mbar
+    (NaN unless bracketed), the largest stable and smallest unstable Mbar found (None when none was),
+    and every orbit run (Mbar, stable, growth rate, whirl ratio)."""
 
     critical_mass_parameter: float
-    stable_below: float
-    unstable_above: float
+    stable_below: float | None
+    unstable_above: float | None
     whirl_ratio: float
     trials: list[tuple[float, bool, float, float]] = field(default_factory=list)
+    status: str = BRACKETED
+    message: str = ""
+    mass_range: tuple[float, float] = MASS_PARAMETER_RANGE
+    wall_time_s: float = 0.0
+
+
+class _Budget(Exception):
+    """Internal: the search ran out of orbits or time (``status`` says which)."""
+
+    def __init__(self, status: str, detail: str) -> None:
+        super().__init__(detail)
+        self.status = status
+        self.detail = detail
 
 
 def critical_mass_parameter(bearing: Bearing, bearing_number: float, level: int = 3, load: float = 0.0,
                             start_eccentricity: float = 0.1, duration: float = 40.0, first_guess: float = 1.0,
-                            rel_tol: float = 0.05, max_trials: int = 24, method: str = "multigrid") -> StabilityResult:
-    """Critical Mbar at ``bearing_number`` by bisection on orbits (see module docstring)."""
+                            rel_tol: float = 0.05, max_trials: int = 24, method: str = "multigrid",
+                            mass_range: tuple[float, float] = MASS_PARAMETER_RANGE,
+                            max_time_s: float = math.inf, progress: bool = False) -> StabilityResult:
+    """Critical Mbar at ``bearing_number`` by bisection on orbits (see module docstring); ``progress``
+    shows one tqdm bar per orbit on stderr (search stage, Mbar, dimensionless time, outcome)."""
     check_inputs(bearing_number, start_eccentricity)
     require(bearing_number > 0.0, "bearing_number", bearing_number, "must be > 0 for a stability threshold")
     require(0.0 < rel_tol < 1.0, "rel_tol", rel_tol, "must be in (0, 1)")
+    lo_end, hi_end = (float(m) for m in mass_range)
+    require(0.0 < lo_end < hi_end, "mass_range", mass_range, "must be two mass parameters 0 < lo < hi")
+    require(max_trials >= 2, "max_trials", max_trials, "must be >= 2 (the two ends of the mass range)")
+    require(max_time_s > 0.0, "max_time_s", max_time_s, "must be > 0")
+    started = time.perf_counter()
     trials: list[tuple[float, bool, float, float]] = []
-    last_unstable: list[OrbitResult] = []
+    stable_at: dict[float, bool] = {}
+    whirl_near: dict[float, float] = {}
 
-    def is_stable(mbar: float) -> bool:
+    def bracket() -> tuple[float | None, float | None]:
+        """Largest stable Mbar run so far and the smallest unstable one above it."""
+        stable = [m for m, s in stable_at.items() if s]
+        unstable = [m for m, s in stable_at.items() if not s and (not stable or m > max(stable))]
+        return (max(stable) if stable else None), (min(unstable) if unstable else None)
+
+    def is_stable(mbar: float, stage: str) -> bool:
+        if mbar in stable_at:
+            return stable_at[mbar]
         if len(trials) >= max_trials:
-            raise SolverError(f"stability bisection used {max_trials} orbits without a bracket "
-                              f"(trials: {[(round(m, 4), s) for m, s, _, _ in trials]})")
-        res = orbit(bearing, bearing_number, load, mass_from_parameter(mbar, bearing_number), level=level,
-                    duration=duration, start=(start_eccentricity, 0.0), method=method, stop_when_settled=False)
+            raise _Budget(ITERATION_BUDGET, f"orbit budget of {max_trials} orbits reached")
+        left = max_time_s - (time.perf_counter() - started)
+        if left <= 0.0:
+            raise _Budget(TIME_BUDGET, f"time budget of {max_time_s:g} s reached after {len(trials)} orbits")
+        try:
+            with OrbitProgress(duration, f"stability {stage} orbit {len(trials) + 1} Mbar {mbar:.4g}", progress) as bar:
+                res = orbit(bearing, bearing_number, load, mass_from_parameter(mbar, bearing_number), level=level,
+                            duration=duration, start=(start_eccentricity, 0.0), method=method,
+                            stop_when_settled=False, on_step=bar.update, max_wall_time_s=left)
+                bar.outcome = res.outcome()
+        except WallTimeExceeded as exc:
+            raise _Budget(TIME_BUDGET, f"time budget of {max_time_s:g} s reached during orbit {len(trials) + 1} "
+                          f"(Mbar {mbar:.4g}, at T = {exc.time:.3g} of {duration:g})") from None
         trials.append((mbar, res.stable, res.growth_rate, res.whirl_ratio))
-        if not res.stable:
-            last_unstable.append(res)
+        stable_at[mbar] = res.stable
+        whirl_near[mbar] = res.whirl_ratio
         return res.stable
 
-    lo = hi = None
-    mbar = first_guess
-    if is_stable(mbar):
-        lo = mbar
-        while hi is None:
-            mbar *= 4.0
-            if is_stable(mbar):
+    def result(status: str, message: str, lo: float | None, hi: float | None) -> StabilityResult:
+        critical = math.sqrt(lo * hi) if status == BRACKETED else float("nan")
+        whirl = whirl_near[hi] if hi is not None else float("nan")
+        return StabilityResult(critical, lo, hi, whirl, trials, status, message, (lo_end, hi_end),
+                               time.perf_counter() - started)
+
+    def tally() -> str:
+        return f"{len(trials)} orbits in {time.perf_counter() - started:.0f} s"
+
+    span = f"Mbar in [{lo_end:g}, {hi_end:g}]"
+    try:
+        hi_stable = is_stable(hi_end, "range end")
+        lo_stable = is_stable(lo_end, "range end")
+        if not lo_stable and not hi_stable:
+            return result(UNSTABLE_IN_RANGE, f"unstable for every mass in range: whirl at both ends of {span}, "
+                          f"no threshold to bisect ({tally()})", None, lo_end)
+        if lo_stable and hi_stable:
+            return result(STABLE_IN_RANGE, f"stable for every mass in range: both ends of {span} stable, "
+                          f"no threshold to bisect ({tally()})", hi_end, None)
+        if hi_stable:
+            return result(INVERTED, f"unstable at Mbar {lo_end:g} but stable at {hi_end:g}: {span} does not "
+                          f"bracket a whirl onset (stable below, unstable above) ({tally()})", None, None)
+        lo, hi = lo_end, hi_end
+        mbar = min(max(first_guess, lo_end), hi_end)
+        if is_stable(mbar, "bracket"):
+            lo = mbar
+            while mbar * 4.0 < hi_end:
+                mbar *= 4.0
+                if not is_stable(mbar, "bracket"):
+                    hi = mbar
+                    break
                 lo = mbar
-            else:
-                hi = mbar
-    else:
-        hi = mbar
-        while lo is None:
-            mbar /= 4.0
-            if is_stable(mbar):
-                lo = mbar
-            else:
-                hi = mbar
-    while hi / lo > 1.0 + rel_tol:
-        mid = math.sqrt(lo * hi)
-        if is_stable(mid):
-            lo = mid
         else:
-            hi = mid
-    whirl = last_unstable[-1].whirl_ratio if last_unstable else float("nan")
-    return StabilityResult(math.sqrt(lo * hi), lo, hi, whirl, trials)
+            hi = mbar
+            while mbar / 4.0 > lo_end:
+                mbar /= 4.0
+                if is_stable(mbar, "bracket"):
+                    lo = mbar
+                    break
+                hi = mbar
+        while hi / lo > 1.0 + rel_tol:
+            mid = math.sqrt(lo * hi)
+            if is_stable(mid, "bisect"):
+                lo = mid
+            else:
+                hi = mid
+    except _Budget as stop:
+        lo, hi = bracket()
+        so_far = (f"stable at {lo:.4g}" if lo is not None else "no stable mass yet") + ", " + (
+            f"unstable at {hi:.4g}" if hi is not None else "no unstable mass yet")
+        return result(stop.status, f"stopped: {stop.detail}; bracket so far: {so_far} ({span})", lo, hi)
+    return result(BRACKETED, f"critical Mbar = {math.sqrt(lo * hi):.4g} (stable at {lo:.4g}, unstable at "
+                  f"{hi:.4g}; {tally()})", lo, hi)
