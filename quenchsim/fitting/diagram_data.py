@@ -29,11 +29,15 @@ Schema (every entry carries ``source`` and ``kind`` = "printed" (a number printe
     distance_mm = [1.5, 5, 10]; hardness_HRC = [65, 64, 55] (or hardness_HV); hardness_uncertainty_HV = 30
     source = "...", kind = "printed"
 
+    data_from = ["other.toml"]   # optional: also fit the points of these files (same T_aust_C)
+
     [fit.pearlite]           # what the fitter may move: the c_curve parameters of each reaction
     T_upper_C = { value = 724, source = "..." }
     T_ref_C = 600
     free = ["tau_ref_s"]
     tau_ref_s = { value = 1.0, source = "starting value" }
+    calibration_tau_factor = { value = 2.0, source = "..." }   # optional: the material gets tau_ref x factor
+                             # (a declared calibration of the data's steel to the material's; residuals are the data's)
     undercooling_exponent = { value = 3, source = "Li et al. 1998" }  ...
 
 Every rule a point breaks is a one-line :class:`quenchsim.errors.InputError` naming the file, the point
@@ -63,6 +67,8 @@ PHASE_NAMES = ("ferrite", "pearlite", "bainite", "martensite", "austenite")
 """Phase names a data file may use."""
 HV_RANGE = (100.0, 1000.0)
 """Plausible Vickers hardness of a steel, as-quenched or annealed."""
+FITTABLE = ("T_upper_C", *C_CURVE_PARAMETERS)
+"""Parameters of a reaction a [fit] table may free (T_ref_C only places the reference temperature)."""
 JOMINY_BAR_LENGTH_MM = 100.0
 """Length of the standard end-quench bar (ASTM A255 / ISO 642: 25 mm diameter x 100 mm)."""
 NEWTON_T_HIGH_C, NEWTON_T_LOW_C = 800.0, 500.0
@@ -140,14 +146,16 @@ class JominyPoint:
 
 @dataclass(frozen=True)
 class ReactionFitSpec:
-    """The c_curve parameters of one reaction: values (start or fixed), their sources, and which are free."""
+    """The c_curve parameters of one reaction (T_upper_C and C_CURVE_PARAMETERS): values (start or fixed), their
+    sources, and which are free."""
 
     reaction: str
-    T_upper_C: float
     T_ref_C: float
     values: Mapping[str, float]
     sources: Mapping[str, str]
     free: tuple[str, ...]
+    tau_factor: float = 1.0
+    tau_factor_source: str = ""
 
 
 @dataclass(frozen=True)
@@ -355,6 +363,10 @@ def _fit_spec(r: _Reader, reaction: str, table: Any) -> ReactionFitSpec:
         raise r.error(where, reaction, "unknown reaction; quenchsim fits pearlite and bainite (c_curve model)")
     if not isinstance(table, Mapping):
         raise r.error(where, table, "must be a table")
+    for key in table:
+        if key not in (*FITTABLE, "T_ref_C", "free", "calibration_tau_factor"):
+            raise r.error(f"{where}.{key}", table[key], f"unknown entry; allowed: {', '.join(FITTABLE)}, T_ref_C, free, "
+                                                       "calibration_tau_factor")
     values, sources = {}, {}
     for key in ("T_upper_C", "T_ref_C", *C_CURVE_PARAMETERS):
         if key == "n_per_K" and key not in table:
@@ -364,15 +376,22 @@ def _fit_spec(r: _Reader, reaction: str, table: Any) -> ReactionFitSpec:
         spec = table[key]
         sources[key] = spec.get("source", "") if isinstance(spec, Mapping) else ""
     free = table.get("free", [])
-    if not isinstance(free, list) or any(p not in C_CURVE_PARAMETERS for p in free):
-        raise r.error(f"{where}.free", free, f"must list parameters among {', '.join(C_CURVE_PARAMETERS)}")
-    for key in C_CURVE_PARAMETERS:
+    if not isinstance(free, list) or any(p not in FITTABLE for p in free):
+        raise r.error(f"{where}.free", free, f"must list parameters among {', '.join(FITTABLE)}")
+    for key in FITTABLE:
         if key not in free and not sources[key]:
             raise r.error(f"{where}.{key}", values[key], "a parameter the fit holds fixed needs { value = ..., source = ... }")
     if not values["T_ref_C"] < values["T_upper_C"]:
         raise r.error(f"{where}.T_ref_C", values["T_ref_C"], f"must lie below T_upper_C = {values['T_upper_C']:g}")
-    return ReactionFitSpec(reaction=reaction, T_upper_C=values.pop("T_upper_C"), T_ref_C=values.pop("T_ref_C"),
-                           values=values, sources=sources, free=tuple(free))
+    factor, factor_source = 1.0, ""
+    if "calibration_tau_factor" in table:
+        factor = r.number(table, "calibration_tau_factor", where, positive=True)
+        spec = table["calibration_tau_factor"]
+        factor_source = spec.get("source", "") if isinstance(spec, Mapping) else ""
+        if not factor_source:
+            raise r.error(f"{where}.calibration_tau_factor", factor, "a calibration factor needs { value = ..., source = ... }")
+    return ReactionFitSpec(reaction=reaction, T_ref_C=values.pop("T_ref_C"), values=values, sources=sources,
+                           free=tuple(free), tau_factor=factor, tau_factor_source=factor_source)
 
 
 def load_diagram_data(path: str | Path) -> DiagramData:
@@ -386,7 +405,7 @@ def load_diagram_data(path: str | Path) -> DiagramData:
             raw = tomllib.load(fh)
         except tomllib.TOMLDecodeError as exc:
             raise r.error("file", str(path), f"is not valid TOML ({exc})") from None
-    allowed = {"name", "material", "T_aust_C", "source", "cct", "ttt", "jominy", "fit"}
+    allowed = {"name", "material", "T_aust_C", "source", "cct", "ttt", "jominy", "fit", "data_from"}
     for key in raw:
         if key not in allowed:
             raise r.error(key, raw[key], f"unknown entry; allowed: {', '.join(sorted(allowed))}")
@@ -395,6 +414,14 @@ def load_diagram_data(path: str | Path) -> DiagramData:
     ttt = tuple(p for i, t in enumerate(raw.get("ttt", [])) for p in _ttt(r, i, t))
     jominy = tuple(p for i, t in enumerate(raw.get("jominy", [])) for p in _jominy(r, i, t))
     fit = {name: _fit_spec(r, name, t) for name, t in raw.get("fit", {}).items()}
+    included = raw.get("data_from", [])
+    if not isinstance(included, list) or not all(isinstance(x, str) for x in included):
+        raise r.error("data_from", included, "must be a list of data file names (relative to this file)")
+    for name in included:
+        other = load_diagram_data(path.parent / name)
+        if other.T_aust_C != T_aust:
+            raise r.error("data_from", name, f"austenitised at {other.T_aust_C:g} C, this file at {T_aust:g} C")
+        cct, ttt, jominy = cct + other.cct, ttt + other.ttt, jominy + other.jominy
     if not (cct or ttt or jominy):
         raise r.error("file", sorted(raw), "holds no data: give [[cct]], [[ttt]] or [[jominy]] entries")
     return DiagramData(path=path, name=r.text(raw, "name", "file"), material=r.text(raw, "material", "file"),

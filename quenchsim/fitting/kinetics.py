@@ -42,7 +42,7 @@ from quenchsim.metallurgy.cct import FINISH_SHARE, MIN_FINISH_AMOUNT, START_FRAC
 
 X_START, X_FINISH = 0.01, 0.99
 """Fractions of the TTT start and finish lines (1 % and 99 %)."""
-CCT_GRID_GROWTH = 1.05
+CCT_GRID_GROWTH = 1.1
 """Ratio of successive time steps on a CCT curve (advance sub-steps every 5 K within a step)."""
 CONDITION_LIMIT = 1e-6
 """Smallest singular value of the column-normalised Jacobian, relative to the largest, of an identifiable fit."""
@@ -83,8 +83,8 @@ class FitResult:
 
 def c_curve_reaction(spec: ReactionFitSpec, values: Mapping[str, float], source: str = "fit") -> Reaction:
     """The ``c_curve`` Reaction of a fit spec with the given parameter values."""
-    params = {"T_ref_C": spec.T_ref_C, "n_per_K": 0.0, **{k: float(v) for k, v in values.items()}}
-    return Reaction(model="c_curve", source=source, T_upper_C=spec.T_upper_C, params=params)
+    params = {"T_ref_C": spec.T_ref_C, "n_per_K": 0.0, **{k: float(v) for k, v in values.items() if k != "T_upper_C"}}
+    return Reaction(model="c_curve", source=source, T_upper_C=float(values["T_upper_C"]), params=params)
 
 
 @dataclass(frozen=True)
@@ -239,8 +239,10 @@ def _kinetics_with(base: Kinetics, data: DiagramData, values: Mapping[str, Mappi
     return dataclasses.replace(base, reactions=ordered)
 
 
-_BOUNDS = {"tau_ref_s": (-40.0, 40.0), "undercooling_exponent": (0.1, 12.0), "Q_J_mol": (0.0, 1.0e6),
-           "n": (0.3, 8.0), "n_per_K": (-0.1, 0.1)}
+_BOUNDS = {"T_upper_C": (100.0, 1000.0), "tau_ref_s": (-40.0, 40.0), "undercooling_exponent": (0.1, 12.0),
+           "Q_J_mol": (0.0, 1.0e6), "n": (0.5, 4.0), "n_per_K": (-0.1, 0.1)}
+"""Bounds of the free parameters (tau_ref_s in ln s). n <= 4: the largest Avrami exponent of the theory (3-D growth
+at a constant nucleation rate; Christian, The Theory of Transformations in Metals and Alloys, 2002, ch. 12)."""
 
 
 def fit_kinetics(data: DiagramData, jominy_histories: tuple[np.ndarray, np.ndarray] | None = None) -> FitResult:
@@ -250,7 +252,7 @@ def fit_kinetics(data: DiagramData, jominy_histories: tuple[np.ndarray, np.ndarr
     base = base_kinetics(data)
     names = [(r, p) for r, spec in data.fit.items() for p in spec.free]
     x0 = np.array([np.log(data.fit[r].values[p]) if p == "tau_ref_s" else data.fit[r].values[p] for r, p in names])
-    lo = np.array([_BOUNDS[p][0] for _, p in names])
+    lo = np.array([data.fit[r].T_ref_C + 1.0 if p == "T_upper_C" else _BOUNDS[p][0] for r, p in names])
     hi = np.array([_BOUNDS[p][1] for _, p in names])
 
     def vector(x: np.ndarray) -> np.ndarray:
@@ -304,35 +306,45 @@ def _fmt(x: float) -> float:
 def fitted_block(result: FitResult, data_file: str) -> str:
     """TOML text of the fitted reactions and the fit record (data file, residual of every point, its source)."""
     data = result.data
-    doc: dict[str, Any] = {}
+    lines = [FIT_BEGIN]
     for r, spec in data.fit.items():
         values = result.parameters[r]
-        free = ", ".join(spec.free) or "none"
-        table: dict[str, Any] = {
-            "model": "c_curve",
-            "source": f"fitted by `quenchsim material fit {data_file}` ({data.name}); free: {free}; fixed parameters "
-                      f"carry their own source. Data: {data.source}",
-            "T_upper_C": {"value": spec.T_upper_C, "source": spec.sources["T_upper_C"]},
-            "T_ref_C": {"value": spec.T_ref_C, "source": spec.sources["T_ref_C"] or "reference temperature of the fit"},
-        }
+        lines += ["", f"[kinetics.{r}]", 'model = "c_curve"',
+                  "source = " + _value(f"fitted by `quenchsim material fit {data_file}` ({data.name}); free: "
+                                       f"{', '.join(spec.free) or 'none'}; every parameter carries its own source"),
+                  "T_ref_C = " + _inline({"value": spec.T_ref_C, "source": spec.sources["T_ref_C"]
+                                          or "reference temperature of the fit"})]
         for p, v in values.items():
             if p in spec.free:
                 err = result.std_errors[r].get(p, float("nan"))
                 what = f"relative std. error {err:.2g}" if p == "tau_ref_s" else f"std. error {err:.2g}"
-                table[p] = {"value": _fmt(v), "source": f"fitted to {data_file} ({what})"}
+                source = f"fitted to {data_file} ({what})"
             else:
-                table[p] = {"value": _fmt(v), "source": spec.sources[p]}
-        doc[r] = table
-    doc["fit"] = {
-        "data_file": data_file,
-        "T_aust_C": data.T_aust_C,
-        "cost": _fmt(result.cost),
-        "residuals": [{"point": x.where, "quantity": x.quantity, "data": _fmt(x.data), "model": _fmt(x.model),
-                       "unit": x.unit, "uncertainty": x.uncertainty, "normalised": _fmt(x.residual),
-                       "source": x.source, "kind": x.kind} for x in result.residuals],
-    }
-    body = tomli_w.dumps({"kinetics": doc})
-    return f"{FIT_BEGIN}\n{body.rstrip()}\n{FIT_END}\n"
+                source = spec.sources[p]
+            if p == "tau_ref_s" and spec.tau_factor != 1.0:
+                source = (f"{_fmt(v)} s ({source}) x calibration factor {spec.tau_factor:g}: {spec.tau_factor_source}")
+                v = v * spec.tau_factor
+            lines.append(f"{p} = " + _inline({"value": _fmt(v), "source": source}))
+    sources = list(dict.fromkeys(x.source for x in result.residuals))
+    lines += ["", "[kinetics.fit]", "data_file = " + _value(data_file), f"T_aust_C = {_value(data.T_aust_C)}",
+              f"cost = {_value(_fmt(result.cost))}", "sources = ["]
+    lines += [f"    {_value(x)}," for x in sources] + ["]", "# source = index into sources", "residuals = ["]
+    lines += [f"    {_inline(row)}," for row in (
+        {"point": x.where, "quantity": x.quantity, "data": _fmt(x.data), "model": _fmt(x.model), "unit": x.unit,
+         "uncertainty": x.uncertainty, "normalised": _fmt(x.residual), "kind": x.kind,
+         "source": sources.index(x.source)} for x in result.residuals)]
+    lines += ["]", FIT_END]
+    return "\n".join(lines) + "\n"
+
+
+def _value(v: Any) -> str:
+    """One TOML value."""
+    return tomli_w.dumps({"v": v})[4:].strip()
+
+
+def _inline(row: Mapping[str, Any]) -> str:
+    """A flat mapping as a one-line TOML inline table."""
+    return "{ " + ", ".join(f"{k} = {_value(v)}" for k, v in row.items()) + " }"
 
 
 def _strip_reactions(text: str, reactions: Sequence[str]) -> str:
