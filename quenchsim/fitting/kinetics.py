@@ -348,8 +348,9 @@ def _inline(row: Mapping[str, Any]) -> str:
 
 
 def _strip_reactions(text: str, reactions: Sequence[str]) -> str:
-    """Remove an earlier fitted block and the [kinetics.<reaction>] tables (with sub-tables) of ``reactions``."""
-    text = re.sub(re.escape(FIT_BEGIN) + r".*?" + re.escape(FIT_END) + r"\n?", "", text, flags=re.S)
+    """Remove the [kinetics.<reaction>] tables (with sub-tables) of ``reactions`` and the old fit record; reactions of
+    an earlier fit that this one does not cover stay (with their sources), the old block markers go."""
+    text = "".join(line for line in text.splitlines(keepends=True) if line.rstrip("\n") not in (FIT_BEGIN, FIT_END))
     heads = tuple(f"kinetics.{r}" for r in (*reactions, "fit"))
     out, skipping = [], False
     for line in text.splitlines(keepends=True):
