@@ -213,6 +213,18 @@ def residuals(kin: Kinetics, data: DiagramData, jominy_histories: tuple[np.ndarr
 
 # -- the fit ----------------------------------------------------------------------------------------
 
+def jominy_histories(data: DiagramData, progress: bool = False) -> tuple[np.ndarray, np.ndarray] | None:
+    """Cooling histories of the standard Jominy bar at the data's Jominy distances (None without Jominy data), computed
+    once with the base material's thermal data and kinetics (latent heat included)."""
+    if not data.jominy:
+        return None
+    from quenchsim.fitting.jominy import cooling_histories
+
+    material = load_material(data.material, field=f"{data.path.name}: material")
+    return cooling_histories(material, load_kinetics(material, data.T_aust_C),
+                             np.array([p.distance_mm for p in data.jominy]), progress=progress)
+
+
 def base_kinetics(data: DiagramData) -> Kinetics:
     """The data file's base material at its austenitising temperature, with the reactions the fit replaces dropped."""
     material = load_material(data.material, field=f"{data.path.name}: material")
