@@ -38,7 +38,7 @@ from quenchsim.fitting.diagram_data import CCTPoint, CoolingCurve, DiagramData, 
 from quenchsim.materials import load_material, materials_dir
 from quenchsim.materials.properties import PHASES
 from quenchsim.metallurgy import Kinetics, Reaction, advance, hardness_HV, initial_state, load_kinetics
-from quenchsim.metallurgy.cct import FINISH_SHARE, MIN_FINISH_AMOUNT, START_FRACTION
+from quenchsim.metallurgy.cct import FINISH_SHARE, MIN_FINISH_AMOUNT, START_FRACTION, crossing_time
 
 X_START, X_FINISH = 0.01, 0.99
 """Fractions of the TTT start and finish lines (1 % and 99 %)."""
@@ -97,17 +97,6 @@ class CurveResult:
     hardness_HV: np.ndarray
 
 
-def _crossing_time(t: np.ndarray, X: np.ndarray, level: np.ndarray) -> np.ndarray:
-    reached = X >= level
-    k = np.argmax(reached, axis=0)
-    cols = np.arange(X.shape[1])
-    ok = reached[k, cols] & (k > 0)
-    k0 = np.maximum(k - 1, 0)
-    X0, X1 = X[k0, cols], X[k, cols]
-    w = np.where(X1 > X0, (level - X0) / np.where(X1 > X0, X1 - X0, 1.0), 1.0)
-    return np.where(ok, t[k0] + w * (t[k] - t[k0]), np.nan)
-
-
 def run_curves(kin: Kinetics, curves: Sequence[CoolingCurve], growth: float = CCT_GRID_GROWTH) -> CurveResult:
     """Integrate ``advance`` along every cooling curve at once (one geometric time grid) and read the CCT lines."""
     first = min(10.0 / c.rate_C_s if not c.newtonian else c.theta_s * 10.0 / (c.T_start_C - c.T_end_C) for c in curves)
@@ -127,8 +116,8 @@ def run_curves(kin: Kinetics, curves: Sequence[CoolingCurve], growth: float = CC
     for p in kin.reactions:
         X = np.array(hist[p])
         final = X[-1]
-        ts = _crossing_time(times, X, np.full_like(final, START_FRACTION))
-        tf = np.where(final > MIN_FINISH_AMOUNT, _crossing_time(times, X, FINISH_SHARE * final), np.nan)
+        ts = crossing_time(times, X, np.full_like(final, START_FRACTION))
+        tf = np.where(final > MIN_FINISH_AMOUNT, crossing_time(times, X, FINISH_SHARE * final), np.nan)
         start[p] = np.array([curves[i].temperature_C(ts[i]) if np.isfinite(ts[i]) else np.nan for i in cols])
         finish[p] = np.array([curves[i].temperature_C(tf[i]) if np.isfinite(tf[i]) else np.nan for i in cols])
     return CurveResult(start_T_C=start, finish_T_C=finish, fractions={p: state.fractions[p].copy() for p in PHASES},
