@@ -20,6 +20,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "run": ("quenchsim.commands.run", "run one case and condition, write VTK/probes/summary"),
     "mesh": ("quenchsim.commands.mesh", "build and write the section mesh of a case"),
     "cct": ("quenchsim.commands.cct", "plot the CCT diagram implied by a material's kinetics"),
+    "ttt": ("quenchsim.commands.ttt", "print/plot the TTT diagram of a material's kinetics, with its fitted data"),
+    "material": ("quenchsim.commands.material", "material fit: steel kinetics from CCT / TTT / Jominy data"),
     "bath": ("quenchsim.commands.bath", "show the bath model: local velocities and HTC(T) per segment"),
     "sweep": ("quenchsim.commands.sweep", "run a parameter sweep on Dask distributed"),
     "report": ("quenchsim.commands.report", "HTML/Markdown report of run or sweep directories"),

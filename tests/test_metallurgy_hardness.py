@@ -24,8 +24,8 @@ def test_maynier_per_phase_closed_form_and_mixture():
     d, b = kin.dissolved, kin.composition
     logv = np.log10(20.0 * 3600.0)
     hv_m = 127 + 949 * d["C"] + 27 * d["Si"] + 11 * d["Mn"] + 16 * d["Cr"] + 21 * logv
-    hv_b = (-323 + 185 * d["C"] + 330 * d["Si"] + 153 * d["Mn"] + 144 * d["Cr"]
-            + (89 + 53 * d["C"] - 55 * d["Si"] - 22 * d["Mn"] - 20 * d["Cr"]) * logv)
+    hv_b = min(-323 + 185 * b["C"] + 330 * b["Si"] + 153 * b["Mn"] + 144 * b["Cr"]
+               + (89 + 53 * b["C"] - 55 * b["Si"] - 22 * b["Mn"] - 20 * b["Cr"]) * logv, 645.0)  # bulk, capped
     hv_p = 42 + 223 * b["C"] + 53 * b["Si"] + 30 * b["Mn"] + 7 * b["Cr"] + (10 - 19 * b["Si"] + 8 * b["Cr"]) * logv
     assert phase_hardness_HV(kin, "martensite", np.array([20.0]))[0] == pytest.approx(hv_m, rel=1e-12)
     assert phase_hardness_HV(kin, "bainite", np.array([20.0]))[0] == pytest.approx(hv_b, rel=1e-12)
@@ -67,11 +67,12 @@ def _broken(edit) -> dict:
     (lambda m: m["kinetics"]["martensite"].update(Ms_formula={"const": 561, "Xx": 3}), "SUJ3.kinetics.martensite.Ms_formula.Xx"),
     (lambda m: m["kinetics"]["pearlite"].update(model="avrami"), "SUJ3.kinetics.pearlite.model"),
     (lambda m: m["kinetics"]["pearlite"].pop("source"), "SUJ3.kinetics.pearlite.source"),
-    (lambda m: m["kinetics"]["bainite"].update(X_finish=0.005), "SUJ3.kinetics.bainite.X_finish"),
-    (lambda m: m["kinetics"]["pearlite"].update(Q_cal_mol="high"), "SUJ3.kinetics.pearlite.Q_cal_mol"),
+    (lambda m: m["kinetics"]["bainite"].update(n_per_K=0.05), "SUJ3.kinetics.bainite.n_per_K"),
+    (lambda m: m["kinetics"]["pearlite"].update(Q_J_mol="high"), "SUJ3.kinetics.pearlite.Q_J_mol"),
+    (lambda m: m["kinetics"]["bainite"].update(T_ref_C=500.0), "SUJ3.kinetics.bainite.T_ref_C"),
+    (lambda m: m["kinetics"]["pearlite"].pop("tau_ref_s"), "SUJ3.kinetics.pearlite.tau_ref_s"),
     (lambda m: m.pop("kinetics"), "SUJ3.kinetics"),
     (lambda m: m["austenitisation"]["dissolved_wt"].update(C=[0.5, 1.5]), "SUJ3.austenitisation.dissolved_wt.C"),
-    (lambda m: m["austenitisation"].pop("grain_size_ASTM"), "SUJ3.austenitisation.grain_size_ASTM"),
     (lambda m: m["composition"].update(C=-1.0), "SUJ3.composition.C"),
     (lambda m: m["hardness"].pop("austenite"), "SUJ3.hardness.austenite"),
     (lambda m: m["hardness"]["martensite"].update(composition="matrix"), "SUJ3.hardness.martensite.composition"),
@@ -81,6 +82,14 @@ def test_bad_kinetics_fields_are_named(edit, field):
         load_kinetics(_broken(edit), 845.0)
     assert err.value.field == field
     assert str(err.value).startswith(field)
+
+
+def test_li1998_model_needs_a_grain_size():
+    material = copy.deepcopy(load_material("SUJ3_li1998"))
+    material["austenitisation"].pop("grain_size_ASTM")
+    with pytest.raises(InputError) as err:
+        load_kinetics(material, 845.0)
+    assert err.value.field == "SUJ3_li1998.austenitisation.grain_size_ASTM"
 
 
 def test_bad_austenitising_temperature_and_unknown_material():

@@ -16,10 +16,10 @@ from quenchsim.metallurgy import advance, initial_state, load_kinetics
 from quenchsim.metallurgy.laws import li_sigmoid_integral
 
 R_CAL = 1.98720  # cal/(mol K)
-_KIN_SUJ3 = load_kinetics(load_material("SUJ3"), 845.0)
+_KIN_SUJ3 = load_kinetics(load_material("SUJ3_li1998"), 845.0)
 
 
-def _kin(name: str = "SUJ2", T_aust: float = 840.0, drop: tuple[str, ...] = ()):
+def _kin(name: str = "SUJ2_li1998", T_aust: float = 840.0, drop: tuple[str, ...] = ()):
     material = copy.deepcopy(load_material(name))
     for reaction in drop:
         del material["kinetics"][reaction]
@@ -45,7 +45,7 @@ def test_li_sigmoid_integral_matches_published_values():
 
 def test_jmak_isothermal_pearlite_exact_against_li_closed_form():
     """Isothermal pearlite at 650 C: the fraction follows X = 1 - exp(-(t/tau)^n) exactly, through Li's t(1 %), t(99 %)."""
-    kin = _kin("SUJ2", drop=("bainite",))
+    kin = _kin("SUJ2_li1998", drop=("bainite",))
     d = kin.dissolved
     # Li et al. 1998 eqs. 13, 20-21 written out independently of the code
     F = np.exp(-4.25 + 4.12 * d["C"] + 4.36 * d["Mn"] + 0.44 * d["Si"] + 3.33 * d["Cr"])
@@ -65,7 +65,7 @@ def test_jmak_isothermal_pearlite_exact_against_li_closed_form():
 
 def test_jmak_isothermal_step_independent():
     """Isothermal JMAK through additivity is exact whatever the steps: one step == 50 steps."""
-    kin = _kin("SUJ2", drop=("bainite",))
+    kin = _kin("SUJ2_li1998", drop=("bainite",))
     one = _hold(kin, 600.0, np.array([6.0]))[-1].fractions["pearlite"]
     many = _hold(kin, 600.0, np.linspace(0.12, 6.0, 50))[-1].fractions["pearlite"]
     assert 0.05 < one[0] < 0.999
@@ -82,7 +82,7 @@ def test_bainite_jmak_polynomial_reproduces_furlan_ttt():
 
 
 def test_koistinen_marburger_exact_and_irreversible():
-    kin = _kin("SUJ2", drop=("pearlite", "bainite"))
+    kin = _kin("SUJ2_li1998", drop=("pearlite", "bainite"))
     Ms, a = kin.Ms_C, kin.alpha_per_K
     state = initial_state((3,), kin)
     T_end = np.array([Ms + 10.0, 150.0, 20.0])
@@ -117,7 +117,7 @@ def _linear_cooling(kin, rate_C_s: float, T0: float, T1: float, dT_step: float) 
 
 def test_additivity_under_constant_cooling_rate_converges_with_fourth_order():
     """Single reaction, linear cooling: exact X = 1 - exp(-I^n), I = int dt / tau(T(t)) (quadrature)."""
-    kin = _kin("SUJ2", drop=("bainite",))
+    kin = _kin("SUJ2_li1998", drop=("bainite",))
     reaction = kin.reactions["pearlite"]
     # start at Ae1 (nothing happens above it), so the integrand is smooth over the cooling range
     rate, T0, T1 = 15.0, reaction.T_upper_C, 300.0
@@ -135,7 +135,7 @@ def test_additivity_under_constant_cooling_rate_converges_with_fourth_order():
 
 
 def test_competing_reactions_share_austenite_and_converge():
-    kin = _kin("SUJ3")
+    kin = _kin("SUJ3_li1998")
     coarse = dataclasses.replace(kin, substep_K=1e9)
     results = []
     for dT in (40.0, 20.0, 10.0, 5.0, 1.25):
@@ -155,7 +155,7 @@ def test_competing_reactions_share_austenite_and_converge():
 
 
 def test_advance_is_pure_and_vectorised_over_any_shape():
-    kin = _kin("SUJ3")
+    kin = _kin("SUJ3_li1998")
     state = initial_state((4, 6), kin)
     T_old = np.full((4, 6), 700.0)
     T_new = np.linspace(150.0, 690.0, 24).reshape(4, 6)
@@ -168,7 +168,7 @@ def test_advance_is_pure_and_vectorised_over_any_shape():
 
 
 def test_cooling_rate_at_700_recorded_once():
-    kin = _kin("SUJ3")
+    kin = _kin("SUJ3_li1998")
     s = initial_state((2,), kin)
     s = advance(s, kin, np.array([840.0, 840.0]), np.array([720.0, 690.0]), 2.0)
     assert np.isnan(s.cooling_rate_700_C_s[0]) and s.cooling_rate_700_C_s[1] == pytest.approx(75.0)
@@ -180,7 +180,7 @@ def test_li_model_reproduces_published_4140_critical_rate():
     """Li et al. 1998 Table II: AISI 4140 (G = 8) needs 24.8 C/s for a fully martensitic structure (bainite
     limited), V = int_Ms^Bs dT / tau_1%(T) (their eq. 30). Built through the material-file loader."""
     comp = {"C": 0.38, "Mn": 0.81, "Si": 0.28, "Ni": 0.11, "Cr": 0.98, "Mo": 0.22}
-    material = copy.deepcopy(load_material("SUJ2"))
+    material = copy.deepcopy(load_material("SUJ2_li1998"))
     material["name"] = "AISI4140"
     material["composition"] = {"source": "Li 1998 Table I", **comp}
     material["austenitisation"]["dissolved_wt"] = {el: [w, w] for el, w in comp.items()}

@@ -28,6 +28,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--rates", type=float, nargs="+", default=list(DEFAULT_RATES_C_S), metavar="C_PER_S",
                         help="linear cooling rates in C/s (default: 0.1 ... 300)")
     parser.add_argument("--png", type=Path, help="write the diagram to this PNG file")
+    parser.add_argument("--overlay", action="store_true",
+                        help="with --png: overlay the CCT data the material was fitted to (its [kinetics.fit] data file)")
     parser.add_argument("--json", action="store_true", help="print one JSON object instead of the table")
 
 
@@ -47,7 +49,12 @@ def run(args: argparse.Namespace) -> int:
     material = load_material(args.material)
     kin = load_kinetics(material, args.T_aust)
     d = cct_diagram(kin, rates, args.T_aust)
-    if args.png:
+    if args.png and args.overlay:
+        from quenchsim.commands.ttt import fitted_data
+        from quenchsim.fitting.plots import plot_cct_overlay
+
+        plot_cct_overlay(kin, fitted_data(material, None), args.png)
+    elif args.png:
         from quenchsim.metallurgy.plots import plot_cct
 
         args.png.parent.mkdir(parents=True, exist_ok=True)

@@ -46,7 +46,7 @@ class CCTDiagram:
     hardness_HRC: np.ndarray
 
 
-def _crossing(t: np.ndarray, X: np.ndarray, level: np.ndarray) -> np.ndarray:
+def crossing_time(t: np.ndarray, X: np.ndarray, level: np.ndarray) -> np.ndarray:
     """First time each column of X (steps x points) reaches ``level`` (linear between grid times; NaN if never)."""
     reached = X >= level
     k = np.argmax(reached, axis=0)
@@ -87,8 +87,8 @@ def cct_diagram(kin: Kinetics, rates_C_s: np.ndarray, T_start_C: float, T_end_C:
     for p in kin.reactions:
         X = np.array(history[p])
         final = X[-1]
-        start_t[p] = _crossing(times, X, np.full_like(final, START_FRACTION))
-        finish_t[p] = np.where(final > MIN_FINISH_AMOUNT, _crossing(times, X, FINISH_SHARE * final), np.nan)
+        start_t[p] = crossing_time(times, X, np.full_like(final, START_FRACTION))
+        finish_t[p] = np.where(final > MIN_FINISH_AMOUNT, crossing_time(times, X, FINISH_SHARE * final), np.nan)
         start_T[p] = np.maximum(T_start_C - rates * start_t[p], T_end_C)
         finish_T[p] = np.maximum(T_start_C - rates * finish_t[p], T_end_C)
     hv = hardness_HV(state, kin)

@@ -9,7 +9,10 @@ X = 1 - exp(-(t/tau(T))^n(T)) from one of three sources:
   fed with the composition dissolved in austenite; the JMAK law is fitted through Li's times to
   X_start and X_finish (the usual 1 % / 99 % TTT start and finish lines);
 * ``jmak_polynomial``: ln b(T) and n(T) polynomials, X = 1 - exp(-b t^n) (e.g. Furlan et al. 2025);
-* ``ttt_table``: tabulated start/finish times of a TTT diagram, n(T) and tau(T) through both points.
+* ``ttt_table``: tabulated start/finish times of a TTT diagram, n(T) and tau(T) through both points;
+* ``c_curve``: the C-curve law 1/tau = (1/tau_ref) [(T_u - T)/(T_u - T_ref)]^m exp[-(Q/R)(1/T - 1/T_ref)] with
+  n(T) = n + n_per_K (T - T_ref), whose parameters ``quenchsim material fit`` finds from CCT / TTT / Jominy
+  data (:mod:`quenchsim.fitting.kinetics`); the fit's provenance sits in the sub-table ``fit``.
 """
 
 from __future__ import annotations
@@ -22,13 +25,17 @@ import numpy as np
 
 from quenchsim.errors import InputError
 from quenchsim.materials.properties import PHASES
-from quenchsim.metallurgy.laws import jmak_exponent, li_rate, li_sigmoid_integral, linear_formula
+from quenchsim.metallurgy.laws import (c_curve_ln_inverse_tau, jmak_exponent, li_rate, li_sigmoid_integral,
+                                       linear_formula)
 
 ELEMENTS = ("C", "Si", "Mn", "Ni", "Cr", "Mo", "V", "Cu", "Co", "Al", "W", "P", "S")
 """Alloying elements a composition (wt %) may list."""
 
 DIFFUSIONAL = ("pearlite", "bainite")
 """Products of the diffusional (JMAK) reactions, in PHASES order."""
+
+C_CURVE_PARAMETERS = ("tau_ref_s", "undercooling_exponent", "Q_J_mol", "n", "n_per_K")
+"""Parameters of the ``c_curve`` model a fit may free (T_upper_C and T_ref_C are always given)."""
 
 DEFAULT_SUBSTEP_K = 5.0
 """Largest temperature change (K) of one internal sub-step of :func:`quenchsim.metallurgy.advance`.
@@ -101,6 +108,9 @@ class Reaction:
         if self.model == "li1998":
             return li_rate(T, self.T_upper_C, p["ln_F"], p["beta_grain"], p["grain_ASTM"], p["n_undercooling"],
                            p["Q_cal_mol"]) / p["tau_ratio"]
+        if self.model == "c_curve":
+            return np.exp(c_curve_ln_inverse_tau(T, self.T_upper_C, p["T_ref_C"], p["tau_ref_s"],
+                                                 p["undercooling_exponent"], p["Q_J_mol"]))
         if self.model == "jmak_polynomial":
             n = self.exponent(T)
             ln_b = np.polynomial.polynomial.polyval(T, p["ln_b"])
@@ -113,6 +123,8 @@ class Reaction:
         p = self.params
         if self.model == "li1998":
             return np.asarray(p["n"])  # constant (isokinetic): a scalar broadcasts
+        if self.model == "c_curve":
+            return np.asarray(p["n"]) if p["n_per_K"] == 0.0 else p["n"] + p["n_per_K"] * (T - p["T_ref_C"])
         if self.model == "jmak_polynomial":
             return np.polynomial.polynomial.polyval(T, p["n"])
         return np.interp(T, p["T_C"], p["n"])
@@ -236,6 +248,16 @@ def _reaction(table: Any, where: str, composition: Mapping[str, float], grain: f
         n_min = np.polynomial.polynomial.polyval(np.linspace(0.0, T_upper, 200), params["n"]).min()
         if not n_min > 0.0:
             raise InputError(f"{where}.n_poly_T_C", table["n_poly_T_C"], f"n(T) must stay > 0 from 0 C to {T_upper:.0f} C")
+    elif model == "c_curve":
+        params = {"T_ref_C": _number(table, "T_ref_C", where)}
+        for key in C_CURVE_PARAMETERS:
+            params[key] = 0.0 if key == "n_per_K" and key not in table else _number(table, key, where,
+                                                                                   positive=key != "n_per_K")
+        if not params["T_ref_C"] < T_upper:
+            raise InputError(f"{where}.T_ref_C", params["T_ref_C"], f"must lie below T_upper = {T_upper:g} C")
+        n_ends = params["n"] + params["n_per_K"] * (np.array([0.0, T_upper]) - params["T_ref_C"])
+        if not np.all(n_ends > 0.0):
+            raise InputError(f"{where}.n_per_K", params["n_per_K"], f"n(T) must stay > 0 from 0 C to {T_upper:.0f} C")
     elif model == "ttt_table":
         Xs, Xf = _fraction_pair(table, where)
         T = np.asarray(table.get("T_C", []), dtype=float)
@@ -250,7 +272,7 @@ def _reaction(table: Any, where: str, composition: Mapping[str, float], grain: f
         n = np.log(np.log1p(-Xf) / np.log1p(-Xs)) / np.log(tf / ts)
         params = {"T_C": T, "n": n, "ln_tau": np.log(ts) - np.log(-np.log1p(-Xs)) / n}
     else:
-        raise InputError(f"{where}.model", model, "must be one of li1998, jmak_polynomial, ttt_table")
+        raise InputError(f"{where}.model", model, "must be one of li1998, jmak_polynomial, ttt_table, c_curve")
     if model == "ttt_table":  # no reaction above the table either
         T_upper = min(T_upper, float(params["T_C"][-1]))
     return Reaction(model=model, source=source, T_upper_C=T_upper, params=params)
@@ -298,7 +320,8 @@ def load_kinetics(material: dict[str, Any], T_aust_C: float) -> Kinetics:
     * ``[kinetics.pearlite]``, ``[kinetics.bainite]`` (each optional): ``model`` =
       ``li1998`` {ln_F, beta_grain, n_undercooling, Q_cal_mol, sigmoid_exponent, X_start, X_finish},
       ``jmak_polynomial`` {ln_b_poly_T_C, n_poly_T_C, time_unit_s} or
-      ``ttt_table`` {T_C, t_start_s, t_finish_s, X_start, X_finish}; plus the upper temperature
+      ``ttt_table`` {T_C, t_start_s, t_finish_s, X_start, X_finish} or
+      ``c_curve`` {T_ref_C, tau_ref_s, undercooling_exponent, Q_J_mol, n, optional n_per_K}; plus the upper temperature
       ``T_upper_C`` (a number) or ``T_upper_formula`` (a linear composition formula).
     * ``[kinetics.martensite]``: ``Ms_C`` or ``Ms_formula``, ``alpha_per_K`` (Koistinen-Marburger).
     * ``[hardness.<phase>]`` for every phase: ``HV`` or Maynier ``composition/base/rate``; optional ``max_HV``.
@@ -319,8 +342,9 @@ def load_kinetics(material: dict[str, Any], T_aust_C: float) -> Kinetics:
         raise InputError(f"{name}.kinetics.composition", which, "must be 'bulk' or 'dissolved'")
     comp = bulk if which == "bulk" else dissolved
     for key in kin:
-        if key not in (*DIFFUSIONAL, "martensite", "composition", "source"):
-            raise InputError(f"{name}.kinetics.{key}", kin[key], f"unknown entry; allowed: {DIFFUSIONAL}, martensite, composition, source")
+        if key not in (*DIFFUSIONAL, "martensite", "composition", "source", "fit"):
+            raise InputError(f"{name}.kinetics.{key}", kin[key],
+                             f"unknown entry; allowed: {DIFFUSIONAL}, martensite, composition, source, fit (provenance)")
     reactions = {p: _reaction(kin[p], f"{name}.kinetics.{p}", comp, grain) for p in DIFFUSIONAL if p in kin}
     mart = kin.get("martensite")
     where = f"{name}.kinetics.martensite"

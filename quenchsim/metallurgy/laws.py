@@ -12,6 +12,8 @@ from scipy.integrate import quad
 
 R_CAL_MOL_K = 1.98720
 """Gas constant in cal/(mol K) (CODATA 8.314462 J/(mol K) / 4.184 J/cal); Li et al. 1998 give Q in cal/mol."""
+R_J_MOL_K = 8.314462
+"""Gas constant in J/(mol K) (CODATA)."""
 
 KELVIN = 273.15
 
@@ -69,6 +71,24 @@ def li_rate(T_C: np.ndarray, T_upper_C: float, ln_F: float, beta_grain: float, g
     else:
         power = dT**n_undercooling
     return np.exp(beta_grain * grain_ASTM * np.log(2.0) - ln_F - Q_cal_mol / (R_CAL_MOL_K * (T + KELVIN))) * power
+
+
+def c_curve_ln_inverse_tau(T_C: np.ndarray, T_upper_C: float, T_ref_C: float, tau_ref_s: float,
+                           undercooling_exponent: float, Q_J_mol: float) -> np.ndarray:
+    """ln(1/tau) of the C-curve law fitted to diagram data (-inf at and above T_upper).
+
+    1/tau(T) = (1/tau_ref) [(T_u - T)/(T_u - T_ref)]^m exp[-(Q/R)(1/T - 1/T_ref)] (T in K in the Arrhenius
+    term): the undercooling x diffusion form of Zener-Hillert / Kirkaldy (Kirkaldy & Venugopalan 1984; Li et
+    al. 1998 eqs. 18-23), written about a reference temperature T_ref so that tau_ref (the JMAK time constant
+    at T_ref), m and Q are separately identifiable in a fit.
+    """
+    T = np.asarray(T_C, dtype=float)
+    dT = T_upper_C - T
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ln_under = np.log(np.where(dT > 0.0, dT / (T_upper_C - T_ref_C), 1.0))
+    value = (-np.log(tau_ref_s) + undercooling_exponent * ln_under
+             - Q_J_mol / R_J_MOL_K * (1.0 / (T + KELVIN) - 1.0 / (T_ref_C + KELVIN)))
+    return np.where(dT > 0.0, value, -np.inf)
 
 
 def koistinen_marburger(T_C: np.ndarray, Ms_C: float, alpha_per_K: float) -> np.ndarray:

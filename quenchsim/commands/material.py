@@ -1,0 +1,65 @@
+"""`quenchsim material fit DATA.toml --out materials/NAME.toml [--plots DIR] [--json]`: steel kinetics from CCT/TTT/Jominy data.
+
+Fits the free ``c_curve`` parameters named in the data file's [fit] tables by integrating the simulation's own
+additivity along every data point (:mod:`quenchsim.fitting.kinetics`), prints the parameters and the residual of
+every point, and writes the data file's base material with the fitted reactions and the fit record (data file,
+residuals, sources). A parameter the data cannot constrain stops the fit with its name (exit 2).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+from quenchsim.fitting import kinetics as fk
+from quenchsim.fitting.diagram_data import load_diagram_data
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    sub = parser.add_subparsers(dest="action", required=True)
+    fit = sub.add_parser("fit", help="fit a steel's transformation kinetics to CCT / TTT / Jominy data")
+    fit.add_argument("data", type=Path, help="data file (see quenchsim/fitting/diagram_data.py for the format)")
+    fit.add_argument("--out", type=Path, required=True, help="material file to write (e.g. materials/NAME.toml)")
+    fit.add_argument("--plots", type=Path, help="write CCT / TTT (/ Jominy) overlay PNGs into this folder")
+    fit.add_argument("--json", action="store_true", help="print one JSON object instead of the tables")
+
+
+def run(args: argparse.Namespace) -> int:
+    data = load_diagram_data(args.data)
+    histories = fk.jominy_histories(data, progress=not args.json)
+    result = fk.fit_kinetics(data, histories)
+    out = fk.write_material(result, args.out, str(args.data))
+    if args.plots:
+        from quenchsim.fitting.plots import plot_cct_overlay, plot_jominy, plot_ttt
+        from quenchsim.metallurgy import hv_to_hrc
+
+        kin = result.kinetics
+        plot_cct_overlay(kin, data, args.plots / f"{out.stem}_cct.png")
+        plot_ttt(kin, data, args.plots / f"{out.stem}_ttt.png")
+        if histories is not None:
+            _, hv = fk.run_histories(kin, *histories)
+            plot_jominy([p.distance_mm for p in data.jominy], hv_to_hrc(hv), data.jominy,
+                        args.plots / f"{out.stem}_jominy.png", f"{kin.material}: Jominy")
+    if args.json:
+        print(json.dumps({"material_file": str(out), "parameters": result.parameters, "std_errors": result.std_errors,
+                          "cost": result.cost,
+                          "residuals": [{"point": r.where, "quantity": r.quantity, "data": r.data, "model": r.model,
+                                         "unit": r.unit, "normalised": r.residual, "kind": r.kind} for r in result.residuals]}))
+        return 0
+    print(f"{data.name}: {len(result.residuals)} compared quantities, cost {result.cost:.4g}")
+    for r, values in result.parameters.items():
+        spec = data.fit[r]
+        cells = []
+        for p, v in values.items():
+            tag = "fitted" if p in spec.free else "fixed"
+            err = result.std_errors[r].get(p)
+            cells.append(f"{p} = {v:.5g} ({tag}" + (f", +-{err:.2g}{' rel' if p == 'tau_ref_s' else ''})" if err else ")"))
+        print(f"  {r}: " + "; ".join(cells))
+        if spec.tau_factor != 1.0:
+            print(f"  {r}: tau_ref_s x {spec.tau_factor:g} written to the material (declared calibration)")
+    print(f"{'point':<40} {'quantity':<22} {'data':>9} {'model':>9} {'unit':<4} {'norm.':>6} kind")
+    for x in result.residuals:
+        print(f"{x.where[:40]:<40} {x.quantity:<22} {x.data:9.4g} {x.model:9.4g} {x.unit:<4} {x.residual:6.2f} {x.kind}")
+    print(f"wrote {out}")
+    return 0

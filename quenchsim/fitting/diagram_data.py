@@ -1,0 +1,428 @@
+"""Transformation data a heat treater has -- CCT, TTT, Jominy -- as a checked data file (TOML).
+
+Schema (every entry carries ``source`` and ``kind`` = "printed" (a number printed in the source) or
+"read" (read off a figure), and the uncertainty it is weighted with)::
+
+    name = "100Cr6 after Kawulok et al. 2020"
+    material = "SUJ2"        # base material file: thermal data, Ms, hardness; the fit replaces its reactions
+    T_aust_C = 850
+
+    [[cct]]                  # one cooling curve of a CCT diagram
+    cooling_rate_C_s = 12    # linear from T_start_C (default T_aust_C) to T_end_C (default 20), or
+                             # t8_5_s = 40 / lambda = 0.4: Newtonian cooling T_end + (T0 - T_end) exp(-t/theta)
+                             # with 800 -> 500 C in t8_5_s (= 100 lambda s, the lambda of CCT diagrams)
+    start_C = { pearlite = 650 }      # 1 % of the volume transformed
+    finish_C = { pearlite = 600 }     # 99 % of the product's final amount
+    temperature_uncertainty_K = 10
+    fractions = { pearlite = 0.01, bainite = 0.0 }
+    fraction_uncertainty = 0.02
+    hardness_HV = 800 (or hardness_HRC = 64), hardness_uncertainty_HV = 30
+    source = "...", kind = "read"
+
+    [[ttt]]                  # one TTT series (lists of equal length)
+    phase = "bainite"
+    T_C = [300, 350]; t_start_s = [48, 13.4]; t_finish_s = [361, 134]   (1 % and 99 %)
+    time_uncertainty_factor = 1.1
+    source = "...", kind = "read"
+
+    [[jominy]]               # one Jominy series: hardness against distance from the quenched end
+    distance_mm = [1.5, 5, 10]; hardness_HRC = [65, 64, 55] (or hardness_HV); hardness_uncertainty_HV = 30
+    source = "...", kind = "printed"
+
+    data_from = ["other.toml"]   # optional: also fit the points of these files (same T_aust_C)
+
+    [fit.pearlite]           # what the fitter may move: the c_curve parameters of each reaction
+    T_upper_C = { value = 724, source = "..." }
+    T_ref_C = 600
+    free = ["tau_ref_s"]
+    tau_ref_s = { value = 1.0, source = "starting value" }
+    calibration_tau_factor = { value = 2.0, source = "..." }   # optional: the material gets tau_ref x factor
+                             # (a declared calibration of the data's steel to the material's; residuals are the data's)
+    undercooling_exponent = { value = 3, source = "Li et al. 1998" }  ...
+
+Every rule a point breaks is a one-line :class:`quenchsim.errors.InputError` naming the file, the point
+and the rule (finish before start, a curve that does not cool, hardness outside 100-1000 HV, a Jominy
+distance beyond the bar, an unknown phase).
+"""
+
+from __future__ import annotations
+
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from quenchsim.errors import InputError
+from quenchsim.metallurgy.hardness import hrc_to_hv
+from quenchsim.metallurgy.kinetics import C_CURVE_PARAMETERS
+
+KINDS = ("printed", "read")
+"""How a point was obtained: a number printed in the source, or read off a figure."""
+REACTIONS = ("ferrite", "pearlite", "bainite")
+"""Diffusional reactions a diagram may show (ferrite is accepted in data; quenchsim's steels model pearlite and bainite)."""
+PHASE_NAMES = ("ferrite", "pearlite", "bainite", "martensite", "austenite")
+"""Phase names a data file may use."""
+HV_RANGE = (100.0, 1000.0)
+"""Plausible Vickers hardness of a steel, as-quenched or annealed."""
+FITTABLE = ("T_upper_C", *C_CURVE_PARAMETERS)
+"""Parameters of a reaction a [fit] table may free (T_ref_C only places the reference temperature)."""
+JOMINY_BAR_LENGTH_MM = 100.0
+"""Length of the standard end-quench bar (ASTM A255 / ISO 642: 25 mm diameter x 100 mm)."""
+NEWTON_T_HIGH_C, NEWTON_T_LOW_C = 800.0, 500.0
+"""The t8/5 interval by which Newtonian cooling curves of CCT diagrams are labelled."""
+
+
+@dataclass(frozen=True)
+class CoolingCurve:
+    """A CCT cooling curve: linear (rate_C_s) or Newtonian (time constant theta_s) from T_start_C towards T_end_C."""
+
+    T_start_C: float
+    T_end_C: float
+    rate_C_s: float = np.nan
+    theta_s: float = np.nan
+
+    @property
+    def newtonian(self) -> bool:
+        return bool(np.isfinite(self.theta_s))
+
+    def temperature_C(self, t_s: np.ndarray) -> np.ndarray:
+        t = np.asarray(t_s, dtype=float)
+        if self.newtonian:
+            return self.T_end_C + (self.T_start_C - self.T_end_C) * np.exp(-t / self.theta_s)
+        return np.maximum(self.T_start_C - self.rate_C_s * t, self.T_end_C)
+
+    def duration_s(self) -> float:
+        """Time to reach the end temperature (Newtonian: within 0.5 K of it)."""
+        if self.newtonian:
+            return self.theta_s * np.log((self.T_start_C - self.T_end_C) / 0.5)
+        return (self.T_start_C - self.T_end_C) / self.rate_C_s
+
+    def label(self) -> str:
+        return f"t8/5 {self.t8_5_s():.3g} s" if self.newtonian else f"{self.rate_C_s:g} C/s"
+
+    def t8_5_s(self) -> float:
+        return self.theta_s * np.log((NEWTON_T_HIGH_C - self.T_end_C) / (NEWTON_T_LOW_C - self.T_end_C))
+
+
+@dataclass(frozen=True)
+class CCTPoint:
+    where: str
+    curve: CoolingCurve
+    start_C: Mapping[str, float]
+    finish_C: Mapping[str, float]
+    temperature_uncertainty_K: float
+    fractions: Mapping[str, float]
+    fraction_uncertainty: float
+    hardness_HV: float
+    hardness_uncertainty_HV: float
+    source: str
+    kind: str
+
+
+@dataclass(frozen=True)
+class TTTPoint:
+    where: str
+    phase: str
+    T_C: float
+    t_start_s: float
+    t_finish_s: float
+    time_uncertainty_factor: float
+    source: str
+    kind: str
+
+
+@dataclass(frozen=True)
+class JominyPoint:
+    where: str
+    distance_mm: float
+    hardness_HV: float
+    hardness_uncertainty_HV: float
+    source: str
+    kind: str
+
+
+@dataclass(frozen=True)
+class ReactionFitSpec:
+    """The c_curve parameters of one reaction (T_upper_C and C_CURVE_PARAMETERS): values (start or fixed), their
+    sources, and which are free."""
+
+    reaction: str
+    T_ref_C: float
+    values: Mapping[str, float]
+    sources: Mapping[str, str]
+    free: tuple[str, ...]
+    tau_factor: float = 1.0
+    tau_factor_source: str = ""
+
+
+@dataclass(frozen=True)
+class DiagramData:
+    path: Path
+    name: str
+    material: str
+    T_aust_C: float
+    source: str
+    cct: tuple[CCTPoint, ...] = ()
+    ttt: tuple[TTTPoint, ...] = ()
+    jominy: tuple[JominyPoint, ...] = ()
+    fit: Mapping[str, ReactionFitSpec] = field(default_factory=dict)
+
+
+class _Reader:
+    """Field access that names the file and the point in every error."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+
+    def error(self, where: str, value: Any, rule: str) -> InputError:
+        return InputError(f"{self.path.name}: {where}", value, rule)
+
+    def number(self, table: Mapping[str, Any], key: str, where: str, default: float | None = None,
+               positive: bool = False) -> float:
+        if key not in table:
+            if default is not None:
+                return default
+            raise self.error(f"{where}.{key}", None, "is required")
+        value = table[key]
+        if isinstance(value, Mapping):
+            value = value.get("value")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value):
+            raise self.error(f"{where}.{key}", value, "must be a finite number")
+        if positive and value <= 0:
+            raise self.error(f"{where}.{key}", value, "must be > 0")
+        return float(value)
+
+    def text(self, table: Mapping[str, Any], key: str, where: str) -> str:
+        value = table.get(key)
+        if not isinstance(value, str) or not value.strip():
+            raise self.error(f"{where}.{key}", value, "is required (a non-empty string)")
+        return value
+
+    def provenance(self, table: Mapping[str, Any], where: str) -> tuple[str, str]:
+        source = self.text(table, "source", where)
+        kind = table.get("kind")
+        if kind not in KINDS:
+            raise self.error(f"{where}.kind", kind, f"must be one of {KINDS} (a printed number or read off a figure)")
+        return source, kind
+
+    def phases(self, table: Mapping[str, Any], key: str, where: str, allowed: tuple[str, ...]) -> dict[str, float]:
+        spec = table.get(key, {})
+        if not isinstance(spec, Mapping):
+            raise self.error(f"{where}.{key}", spec, "must be a table phase -> value")
+        out = {}
+        for phase, value in spec.items():
+            if phase not in allowed:
+                raise self.error(f"{where}.{key}.{phase}", value, f"unknown phase name; allowed: {', '.join(allowed)}")
+            out[phase] = self.number(spec, phase, f"{where}.{key}")
+        return out
+
+    def hardness(self, table: Mapping[str, Any], where: str, key_hv: str = "hardness_HV",
+                 key_hrc: str = "hardness_HRC") -> np.ndarray | None:
+        if key_hv in table and key_hrc in table:
+            raise self.error(where, sorted(table), f"give {key_hv} or {key_hrc}, not both")
+        if key_hv in table:
+            return np.atleast_1d(np.asarray(table[key_hv], dtype=float))
+        if key_hrc in table:
+            hrc = np.atleast_1d(np.asarray(table[key_hrc], dtype=float))
+            hv = hrc_to_hv(hrc)
+            for i, (c, v) in enumerate(zip(hrc, hv)):
+                if not np.isfinite(v):
+                    raise self.error(f"{where}.{key_hrc}[{i}]", float(c), "HRC must lie within 20-68 (ASTM E140 table)")
+            return hv
+        return None
+
+    def check_hv(self, hv: float, where: str) -> None:
+        if not HV_RANGE[0] <= hv <= HV_RANGE[1]:
+            raise self.error(where, round(float(hv), 1), f"hardness must lie within {HV_RANGE[0]:.0f}-{HV_RANGE[1]:.0f} HV")
+
+
+def _curve(r: _Reader, table: Mapping[str, Any], where: str, T_aust_C: float) -> CoolingCurve:
+    T0 = r.number(table, "T_start_C", where, default=T_aust_C)
+    T1 = r.number(table, "T_end_C", where, default=20.0)
+    given = [k for k in ("cooling_rate_C_s", "t8_5_s", "lambda") if k in table]
+    if len(given) != 1:
+        raise r.error(where, sorted(table), "give exactly one of cooling_rate_C_s, t8_5_s, lambda")
+    if not T1 < T0:
+        raise r.error(f"{where}.T_end_C", T1, f"a cooling curve must cool: T_end_C must be below T_start_C = {T0:g}")
+    value = r.number(table, given[0], where)
+    if value <= 0:
+        raise r.error(f"{where}.{given[0]}", value, "a cooling curve must cool: the rate / cooling time must be > 0")
+    if given[0] == "cooling_rate_C_s":
+        return CoolingCurve(T_start_C=T0, T_end_C=T1, rate_C_s=value)
+    if not (T1 < NEWTON_T_LOW_C and T0 >= NEWTON_T_HIGH_C):
+        raise r.error(f"{where}.{given[0]}", value, f"t8/5 needs T_start_C >= 800 and T_end_C < 500 (got {T0:g}, {T1:g})")
+    t85 = value if given[0] == "t8_5_s" else 100.0 * value
+    theta = t85 / np.log((NEWTON_T_HIGH_C - T1) / (NEWTON_T_LOW_C - T1))
+    return CoolingCurve(T_start_C=T0, T_end_C=T1, theta_s=theta)
+
+
+def _cct(r: _Reader, i: int, table: Any, T_aust_C: float) -> CCTPoint:
+    where = f"cct[{i}]"
+    if not isinstance(table, Mapping):
+        raise r.error(where, table, "must be a table")
+    source, kind = r.provenance(table, where)
+    curve = _curve(r, table, where, T_aust_C)
+    where = f"cct[{i}] ({curve.label()})"
+    start = r.phases(table, "start_C", where, (*REACTIONS, "martensite"))
+    finish = r.phases(table, "finish_C", where, REACTIONS)
+    for p, T in finish.items():
+        if p in start and not T < start[p]:
+            raise r.error(f"{where}.finish_C.{p}", T, f"finish before start: on cooling the finish must lie below the start ({start[p]:g} C)")
+    for p, T in {**start, **finish}.items():
+        if not curve.T_end_C <= T <= curve.T_start_C:
+            raise r.error(f"{where}.{p}", T, f"temperature outside the cooling curve {curve.T_end_C:g}-{curve.T_start_C:g} C")
+    fractions = r.phases(table, "fractions", where, PHASE_NAMES)
+    for p, x in fractions.items():
+        if not 0.0 <= x <= 1.0 + 1e-9:
+            raise r.error(f"{where}.fractions.{p}", x, "a phase fraction must lie within 0-1")
+    if sum(fractions.values()) > 1.0 + 1e-6:
+        raise r.error(f"{where}.fractions", fractions, "phase fractions must not add up to more than 1")
+    hv = r.hardness(table, where)
+    if hv is not None:
+        r.check_hv(hv[0], f"{where}.hardness")
+    if not (start or finish or fractions or hv is not None):
+        raise r.error(where, sorted(table), "a CCT curve needs start_C, finish_C, fractions or a hardness")
+    return CCTPoint(
+        where=where, curve=curve, start_C=start, finish_C=finish,
+        temperature_uncertainty_K=r.number(table, "temperature_uncertainty_K", where, positive=True) if (start or finish) else np.nan,
+        fractions=fractions,
+        fraction_uncertainty=r.number(table, "fraction_uncertainty", where, positive=True) if fractions else np.nan,
+        hardness_HV=float(hv[0]) if hv is not None else np.nan,
+        hardness_uncertainty_HV=r.number(table, "hardness_uncertainty_HV", where, positive=True) if hv is not None else np.nan,
+        source=source, kind=kind)
+
+
+def _series(r: _Reader, table: Mapping[str, Any], keys: tuple[str, ...], where: str) -> list[np.ndarray]:
+    arrays = []
+    for key in keys:
+        if key not in table:
+            raise r.error(f"{where}.{key}", None, "is required")
+        a = np.atleast_1d(np.asarray(table[key], dtype=float))
+        if a.ndim != 1 or not np.all(np.isfinite(a)):
+            raise r.error(f"{where}.{key}", table[key], "must be a number or a list of numbers")
+        arrays.append(a)
+    if len({a.size for a in arrays}) != 1:
+        raise r.error(where, {k: len(a) for k, a in zip(keys, arrays)}, f"lists {', '.join(keys)} must have equal length")
+    return arrays
+
+
+def _ttt(r: _Reader, i: int, table: Any) -> list[TTTPoint]:
+    where = f"ttt[{i}]"
+    if not isinstance(table, Mapping):
+        raise r.error(where, table, "must be a table")
+    source, kind = r.provenance(table, where)
+    phase = table.get("phase")
+    if phase not in REACTIONS:
+        raise r.error(f"{where}.phase", phase, f"unknown phase name; a TTT line belongs to one of {', '.join(REACTIONS)}")
+    factor = r.number(table, "time_uncertainty_factor", where)
+    if not factor > 1.0:
+        raise r.error(f"{where}.time_uncertainty_factor", factor, "must be > 1 (a factor on time)")
+    T, ts, tf = _series(r, table, ("T_C", "t_start_s", "t_finish_s"), where)
+    points = []
+    for k in range(T.size):
+        w = f"{where} point {k} (T_C = {T[k]:g})"
+        if not ts[k] > 0:
+            raise r.error(f"{w}.t_start_s", float(ts[k]), "must be > 0")
+        if not tf[k] > ts[k]:
+            raise r.error(f"{w}.t_finish_s", float(tf[k]), f"finish before start: must be later than t_start_s = {ts[k]:g}")
+        points.append(TTTPoint(where=w, phase=phase, T_C=float(T[k]), t_start_s=float(ts[k]), t_finish_s=float(tf[k]),
+                               time_uncertainty_factor=factor, source=source, kind=kind))
+    return points
+
+
+def _jominy(r: _Reader, i: int, table: Any) -> list[JominyPoint]:
+    where = f"jominy[{i}]"
+    if not isinstance(table, Mapping):
+        raise r.error(where, table, "must be a table")
+    source, kind = r.provenance(table, where)
+    (d,) = _series(r, table, ("distance_mm",), where)
+    hv = r.hardness(table, where)
+    if hv is None:
+        raise r.error(where, sorted(table), "needs hardness_HV or hardness_HRC")
+    if hv.size != d.size:
+        raise r.error(where, {"distance_mm": d.size, "hardness": hv.size}, "distance and hardness lists must have equal length")
+    unc = r.number(table, "hardness_uncertainty_HV", where, positive=True)
+    points = []
+    for k in range(d.size):
+        w = f"{where} point {k} (distance_mm = {d[k]:g})"
+        if not 0.0 < d[k] <= JOMINY_BAR_LENGTH_MM:
+            raise r.error(f"{w}.distance_mm", float(d[k]),
+                          f"Jominy distance beyond the bar: must lie within 0-{JOMINY_BAR_LENGTH_MM:g} mm of the quenched end")
+        r.check_hv(hv[k], f"{w}.hardness")
+        points.append(JominyPoint(where=w, distance_mm=float(d[k]), hardness_HV=float(hv[k]),
+                                  hardness_uncertainty_HV=unc, source=source, kind=kind))
+    return points
+
+
+def _fit_spec(r: _Reader, reaction: str, table: Any) -> ReactionFitSpec:
+    where = f"fit.{reaction}"
+    if reaction not in ("pearlite", "bainite"):
+        raise r.error(where, reaction, "unknown reaction; quenchsim fits pearlite and bainite (c_curve model)")
+    if not isinstance(table, Mapping):
+        raise r.error(where, table, "must be a table")
+    for key in table:
+        if key not in (*FITTABLE, "T_ref_C", "free", "calibration_tau_factor"):
+            raise r.error(f"{where}.{key}", table[key], f"unknown entry; allowed: {', '.join(FITTABLE)}, T_ref_C, free, "
+                                                       "calibration_tau_factor")
+    values, sources = {}, {}
+    for key in ("T_upper_C", "T_ref_C", *C_CURVE_PARAMETERS):
+        if key == "n_per_K" and key not in table:
+            values[key], sources[key] = 0.0, "held constant (n independent of T)"
+            continue
+        values[key] = r.number(table, key, where)
+        spec = table[key]
+        sources[key] = spec.get("source", "") if isinstance(spec, Mapping) else ""
+    free = table.get("free", [])
+    if not isinstance(free, list) or any(p not in FITTABLE for p in free):
+        raise r.error(f"{where}.free", free, f"must list parameters among {', '.join(FITTABLE)}")
+    for key in FITTABLE:
+        if key not in free and not sources[key]:
+            raise r.error(f"{where}.{key}", values[key], "a parameter the fit holds fixed needs { value = ..., source = ... }")
+    if not values["T_ref_C"] < values["T_upper_C"]:
+        raise r.error(f"{where}.T_ref_C", values["T_ref_C"], f"must lie below T_upper_C = {values['T_upper_C']:g}")
+    factor, factor_source = 1.0, ""
+    if "calibration_tau_factor" in table:
+        factor = r.number(table, "calibration_tau_factor", where, positive=True)
+        spec = table["calibration_tau_factor"]
+        factor_source = spec.get("source", "") if isinstance(spec, Mapping) else ""
+        if not factor_source:
+            raise r.error(f"{where}.calibration_tau_factor", factor, "a calibration factor needs { value = ..., source = ... }")
+    return ReactionFitSpec(reaction=reaction, T_ref_C=values.pop("T_ref_C"), values=values, sources=sources,
+                           free=tuple(free), tau_factor=factor, tau_factor_source=factor_source)
+
+
+def load_diagram_data(path: str | Path) -> DiagramData:
+    """Read and check a CCT / TTT / Jominy data file."""
+    path = Path(path)
+    r = _Reader(path)
+    if not path.is_file():
+        raise InputError("data file", str(path), "does not exist")
+    with path.open("rb") as fh:
+        try:
+            raw = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise r.error("file", str(path), f"is not valid TOML ({exc})") from None
+    allowed = {"name", "material", "T_aust_C", "source", "cct", "ttt", "jominy", "fit", "data_from"}
+    for key in raw:
+        if key not in allowed:
+            raise r.error(key, raw[key], f"unknown entry; allowed: {', '.join(sorted(allowed))}")
+    T_aust = r.number(raw, "T_aust_C", "file", positive=True)
+    cct = tuple(_cct(r, i, t, T_aust) for i, t in enumerate(raw.get("cct", [])))
+    ttt = tuple(p for i, t in enumerate(raw.get("ttt", [])) for p in _ttt(r, i, t))
+    jominy = tuple(p for i, t in enumerate(raw.get("jominy", [])) for p in _jominy(r, i, t))
+    fit = {name: _fit_spec(r, name, t) for name, t in raw.get("fit", {}).items()}
+    included = raw.get("data_from", [])
+    if not isinstance(included, list) or not all(isinstance(x, str) for x in included):
+        raise r.error("data_from", included, "must be a list of data file names (relative to this file)")
+    for name in included:
+        other = load_diagram_data(path.parent / name)
+        if other.T_aust_C != T_aust:
+            raise r.error("data_from", name, f"austenitised at {other.T_aust_C:g} C, this file at {T_aust:g} C")
+        cct, ttt, jominy = cct + other.cct, ttt + other.ttt, jominy + other.jominy
+    if not (cct or ttt or jominy):
+        raise r.error("file", sorted(raw), "holds no data: give [[cct]], [[ttt]] or [[jominy]] entries")
+    return DiagramData(path=path, name=r.text(raw, "name", "file"), material=r.text(raw, "material", "file"),
+                       T_aust_C=T_aust, source=r.text(raw, "source", "file"), cct=cct, ttt=ttt, jominy=jominy, fit=fit)

@@ -1,0 +1,109 @@
+"""SUJ2 (= 100Cr6) built from published transformation data: fit quality, critical rate, TTT -> CCT cross-prediction,
+hardness checks. Runs the shipped material against its data file (materials/data/100Cr6_kawulok2020_kaymak2007.toml)
+and refits the bainite to the TTT alone for the cross-prediction."""
+
+from __future__ import annotations
+
+import dataclasses
+import pathlib
+
+import numpy as np
+
+from quenchsim.fitting import kinetics as fk
+from quenchsim.fitting.diagram_data import CoolingCurve, load_diagram_data
+from quenchsim.fitting.jominy import cooling_histories
+from quenchsim.fitting.plots import plot_cct_overlay, plot_jominy, plot_ttt
+from quenchsim.materials import load_material, materials_dir
+from quenchsim.metallurgy import hv_to_hrc, load_kinetics, phase_hardness_HV
+from quenchsim.metallurgy.cct import cct_diagram, critical_rate_C_s
+
+TITLE = "SUJ2 (100Cr6): kinetics fitted to published CCT and TTT data"
+SLOW = False
+T_AUST_C = 850.0
+CCT_RATES_C_S = (0.2, 0.5, 1.0, 2.0, 3.0, 5.0, 8.0, 12.0, 25.0, 60.0, 150.0)
+
+
+def run(workdir: pathlib.Path) -> dict:
+    material = load_material("SUJ2")
+    kin = load_kinetics(material, T_AUST_C)
+    data = load_diagram_data(materials_dir().parent / material["kinetics"]["fit"]["data_file"])
+    res = fk.residuals(kin, data)
+    ttt_factor = [float(np.exp(abs(np.log(r.model / r.data)))) for r in res if r.quantity == "bainite start time"]
+    # cross-prediction: bainite from the TTT alone, predicted along the CCT rates
+    ttt_only = dataclasses.replace(data, cct=(), fit={"bainite": data.fit["bainite"]})
+    kin_ttt = fk.fit_kinetics(ttt_only).kinetics
+    curves = [CoolingCurve(T_AUST_C, 20.0, rate_C_s=r) for r in CCT_RATES_C_S]
+    predicted = fk.run_curves(kin_ttt, curves).fractions["bainite"]
+    joint = fk.run_curves(kin, curves)
+    d = cct_diagram(kin, np.array([100.0]), 840.0)
+    kin840 = load_kinetics(material, 840.0)
+    jominy_d = np.array([1.5, 3.0, 5.0, 7.9, 10.0, 12.7, 15.9, 20.0, 25.0, 30.0, 40.0, 50.0])
+    _, jominy_hv = fk.run_histories(kin, *cooling_histories(material, kin, jominy_d))
+    plot_cct_overlay(kin, data, workdir / "SUJ2_cct.png")
+    plot_ttt(kin, data, workdir / "SUJ2_ttt.png")
+    plot_jominy(jominy_d, hv_to_hrc(jominy_hv), [], workdir / "SUJ2_jominy.png", "SUJ2 model on the standard Jominy bar (no published 100Cr6 Jominy curve found)")
+    return {
+        "critical_rate_C_s": critical_rate_C_s(kin, 0.05, T_AUST_C),
+        "critical_rate_1pct_C_s": critical_rate_C_s(kin, 0.01, T_AUST_C),
+        "ttt_to_cct_max_bainite": float(np.max(predicted)),
+        "ttt_to_cct_bainite": {f"{r:g}": float(x) for r, x in zip(CCT_RATES_C_S, predicted)},
+        "joint_fit_bainite": {f"{r:g}": float(x) for r, x in zip(CCT_RATES_C_S, joint.fractions["bainite"])},
+        "joint_fit_pearlite": {f"{r:g}": float(x) for r, x in zip(CCT_RATES_C_S, joint.fractions["pearlite"])},
+        "ttt_start_time_max_factor": max(ttt_factor),
+        "fit_cost": 0.5 * float(sum(r.residual**2 for r in res)),
+        "residuals": [{"point": r.where, "quantity": r.quantity, "data": r.data, "model": r.model, "unit": r.unit,
+                       "normalised": r.residual} for r in res],
+        "parameters": {r: {k: (v["value"] if isinstance(v, dict) else v) for k, v in material["kinetics"][r].items()
+                           if k not in ("model", "source")} for r in ("pearlite", "bainite")},
+        "as_quenched_HV": float(d.hardness_HV[0]),
+        "as_quenched_HRC": float(d.hardness_HRC[0]),
+        "martensite_HV_100_C_s": float(phase_hardness_HV(kin840, "martensite", np.array([100.0]))[0]),
+        "bainite_HV_10_C_s": float(phase_hardness_HV(kin, "bainite", np.array([10.0]))[0]),
+        "pearlite_HV_0.2_C_s": float(phase_hardness_HV(kin, "pearlite", np.array([0.2]))[0]),
+        "Ms_C": kin.Ms_C,
+        "jominy_mm": jominy_d.tolist(),
+        "jominy_HRC": [float(x) for x in hv_to_hrc(jominy_hv)],
+    }
+
+
+def page(m: dict) -> str:
+    p, b = m["parameters"]["pearlite"], m["parameters"]["bainite"]
+    lines = [
+        "SUJ2's pearlite and bainite are `c_curve` JMAK laws, 1/tau = (1/tau_ref) [(T_u - T)/(T_u - T_ref)]^m "
+        "exp[-(Q/R)(1/T - 1/T_ref)], n(T) = n + n_per_K (T - T_ref), fitted by `quenchsim material fit "
+        "materials/data/100Cr6_kawulok2020_kaymak2007.toml --out materials/SUJ2.toml` through the simulation's own "
+        "additivity (`metallurgy.advance`).", "",
+        "## Which data fixed which parameter", "",
+        "| reaction | parameter | value | fixed by |", "|---|---|---|---|",
+        f"| pearlite | tau_ref_s (at {p['T_ref_C']:g} C) | {p['tau_ref_s']:.4g} s | Kawulok 2020: critical rate 12 C/s and no bainite at 0.2-150 C/s |",
+        f"| pearlite | n | {p['n']:.3g} | the same CCT statements (pearlite must finish before the bainite range below the critical rate); at the Avrami bound 4 |",
+        f"| pearlite | m, Q, T_u | {p['undercooling_exponent']:g}, {p['Q_J_mol']:.0f} J/mol, {p['T_upper_C']:g} C | not constrained by the data: Li et al. 1998 shape, ShKh15 Ac1 |",
+        f"| bainite | tau_ref_s, m, Q, n, n_per_K, T_u | {b['tau_ref_s']:.4g} s, {b['undercooling_exponent']:.3g}, {b['Q_J_mol']:.0f} J/mol, {b['n']:.3g}, {b['n_per_K']:.3g}/K, {b['T_upper_C']:.1f} C | Kaymak 2007 TTT (42 start/finish times, 240-440 C) |",
+        "",
+        "## Fit and cross-prediction", "",
+        f"Critical cooling rate (at most 5 % pearlite + bainite, from 850 C): **{m['critical_rate_C_s']:.1f} C/s** "
+        f"(1 %: {m['critical_rate_1pct_C_s']:.1f} C/s) against Kawulok's 12 C/s. Worst TTT start-time ratio "
+        f"{m['ttt_start_time_max_factor']:.2f} (440 C, where the digitised curve turns back into the bay).", "",
+        "TTT -> CCT: the bainite fitted to the Kaymak TTT alone, run along linear cooling (pearlite: the CCT-fitted law), "
+        "against Kawulok's 'absence of bainite':", "",
+        "| rate C/s | " + " | ".join(m["ttt_to_cct_bainite"]) + " |",
+        "|---|" + "---|" * len(m["ttt_to_cct_bainite"]),
+        "| bainite, TTT-only fit | " + " | ".join(f"{x:.3f}" for x in m["ttt_to_cct_bainite"].values()) + " |",
+        "| bainite, joint fit | " + " | ".join(f"{x:.3f}" for x in m["joint_fit_bainite"].values()) + " |",
+        "| pearlite, joint fit | " + " | ".join(f"{x:.3f}" for x in m["joint_fit_pearlite"].values()) + " |",
+        "",
+        "The reverse prediction (CCT -> TTT) is not possible with these data: the CCT gives no bainite line to predict from.",
+        "", "![CCT](SUJ2_cct.png)", "", "![TTT](SUJ2_ttt.png)", "",
+        "## Hardness checks", "",
+        f"As-quenched (100 C/s from 840 C): {m['as_quenched_HV']:.0f} HV = {m['as_quenched_HRC']:.1f} HRC; martensite "
+        f"phase {m['martensite_HV_100_C_s']:.0f} HV (Maynier on the dissolved 0.6-0.7 %C, cap 900). Bainite phase at 10 C/s: "
+        f"{m['bainite_HV_10_C_s']:.0f} HV (bulk composition, cap 645 HV from Yurtseven's 595-645 HV). Pearlite at 0.2 C/s: "
+        f"{m['pearlite_HV_0.2_C_s']:.0f} HV (no published fine-pearlite hardness of 1 %C steel was found to check it). "
+        f"Ms {m['Ms_C']:.0f} C.", "",
+        "Jominy (model, no data): " + ", ".join(f"J{d:g} {h:.0f}" for d, h in zip(m["jominy_mm"], m["jominy_HRC"])) + " HRC.",
+        "", "![Jominy](SUJ2_jominy.png)", "",
+        "## Residual of every data point", "", "| point | quantity | data | model | unit | normalised |", "|---|---|---|---|---|---|",
+    ]
+    lines += [f"| {r['point']} | {r['quantity']} | {r['data']:.4g} | {r['model']:.4g} | {r['unit']} | {r['normalised']:.2f} |"
+              for r in m["residuals"]]
+    return "\n".join(lines) + "\n"
