@@ -1,6 +1,6 @@
 """Plots of fitted kinetics against the data they were fitted to: CCT overlay, TTT diagram, Jominy curve.
 
-matplotlib is imported inside each function (never at import time).
+figures are drawn without pyplot (quenchsim.figures), so importing this module loads no plotting backend.
 """
 
 from __future__ import annotations
@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from quenchsim.figures import save, subplots
 from quenchsim.fitting.diagram_data import CoolingCurve, DiagramData, JominyPoint
 from quenchsim.fitting.kinetics import X_FINISH, X_START, run_curves
 from quenchsim.metallurgy import Kinetics
@@ -29,13 +30,9 @@ def plot_cct_overlay(kin: Kinetics, data: DiagramData | None, path: Path,
                      rates_C_s: Sequence[float] = tuple(np.logspace(-1, 3, 33))) -> Path:
     """The model's CCT lines (linear cooling from T_aust) with the data's cooling curves, start/finish points (filled:
     data, open: model on the same curve) and final fractions (data / model) written at the curve's foot."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
 
     d = cct_diagram(kin, np.asarray(rates_C_s), kin.T_aust_C)
-    fig, ax = plt.subplots(figsize=(8.5, 6.0))
+    fig, ax = subplots(figsize=(8.5, 6.0))
     for p in kin.reactions:
         ax.plot(d.start_time_s[p], d.start_T_C[p], "-", color=COLOURS[p], lw=1.8, label=f"model {p} 1 %")
         ax.plot(d.finish_time_s[p], d.finish_T_C[p], "--", color=COLOURS[p], lw=1.2, label=f"model {p} 99 % of final")
@@ -70,8 +67,7 @@ def plot_cct_overlay(kin: Kinetics, data: DiagramData | None, path: Path,
     fig.text(0.01, 0.01, "filled: data; open: model on the same cooling curve; fractions data/model", fontsize=7)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save(fig, path, dpi=120)
     return path
 
 
@@ -82,12 +78,8 @@ def ttt_lines(kin: Kinetics, T_C: np.ndarray) -> dict[str, tuple[np.ndarray, np.
 
 def plot_ttt(kin: Kinetics, data: DiagramData | None, path: Path) -> Path:
     """The model's TTT diagram (1 % and 99 % of each reaction, Ms) with the data's TTT points."""
-    import matplotlib
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(7.5, 6.0))
+    fig, ax = subplots(figsize=(7.5, 6.0))
     T = np.linspace(max(kin.Ms_C - 40.0, 20.0), max(r.T_upper_C for r in kin.reactions.values()), 300)
     for p, (ts, tf) in ttt_lines(kin, T).items():
         ok = np.isfinite(ts)
@@ -107,8 +99,7 @@ def plot_ttt(kin: Kinetics, data: DiagramData | None, path: Path) -> Path:
     ax.legend(fontsize=7)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save(fig, path, dpi=120)
     return path
 
 
@@ -116,14 +107,10 @@ def plot_jominy(distance_mm: np.ndarray, model_HRC: np.ndarray, points: Sequence
                 title: str, limits: Sequence[tuple[float, float, str]] = ()) -> Path:
     """Model Jominy curve (HRC vs distance from the quenched end) with data points and optional (distance, HRC, label)
     limits (e.g. a standard's minimum)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
 
     from quenchsim.metallurgy import hv_to_hrc
 
-    fig, ax = plt.subplots(figsize=(7.0, 4.5))
+    fig, ax = subplots(figsize=(7.0, 4.5))
     ax.plot(distance_mm, model_HRC, "-", color="tab:purple", label="model")
     if points:
         ax.plot([p.distance_mm for p in points], hv_to_hrc(np.array([p.hardness_HV for p in points])), "o", color="k",
@@ -137,6 +124,5 @@ def plot_jominy(distance_mm: np.ndarray, model_HRC: np.ndarray, points: Sequence
     ax.legend(fontsize=8)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save(fig, path, dpi=120)
     return path
