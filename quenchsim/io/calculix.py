@@ -127,7 +127,7 @@ def write_inp(path: str | Path, mesh: MeshTri, tables: dict[str, np.ndarray], T_
         lines += ["*STEP, INC=1000", "*STATIC", f"{length:.10g}, {length:.10g}", "*TEMPERATURE"]
         lines += [f"{k + 1}, {v:.10g}" for k, v in enumerate(T)]
         if i == len(temperatures_C) - 1:
-            lines += ["*NODE PRINT, NSET=NALL", "U", "*NODE FILE", "U, S", "*EL FILE", "PEEQ"]
+            lines += ["*NODE PRINT, NSET=NALL", "U", "*NODE FILE", "U", "*EL FILE", "S, PEEQ"]
         lines.append("*END STEP")
     path = Path(path)
     path.write_text("\n".join(lines) + "\n")
@@ -161,7 +161,7 @@ def read_frd_block(path: str | Path, name: str, n_nodes: int) -> np.ndarray:
     """The last nodal result block ``name`` (e.g. "STRESS", "DISP") of an ASCII .frd file as (n_nodes,
     n_components); nodes that CalculiX adds (expanded axisymmetric elements) are dropped."""
     lines = Path(path).read_text().splitlines()
-    starts = [i for i, line in enumerate(lines) if line.startswith("  -4") and line.split()[1] == name]
+    starts = [i for i, line in enumerate(lines) if line.split()[:2] == ["-4", name]]
     if not starts:
         raise InputError(str(path), name, "no such result block in the .frd file")
     i = starts[-1]
