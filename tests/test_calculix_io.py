@@ -96,3 +96,16 @@ def test_quenchsim_agrees_with_calculix_on_the_thermal_only_ring(tmp_path):
     out = study.compare(study.HTC_CASES["uniform"], Path(tmp_path), shutil.which("ccx"))
     assert out["difference"]["max_dimension_mm"] < 0.005
     assert out["difference"]["max_hoop_MPa"] < 5.0
+
+
+def test_the_study_skips_cleanly_without_ccx(monkeypatch, tmp_path):
+    """No ccx: the study says so, its targets are 'skipped' (no miss), and nothing is installed."""
+    from quenchsim.validation import evaluate, load_targets, study_module
+    study = study_module("mechanics/calculix")
+    monkeypatch.setattr(study.shutil, "which", lambda name: None)
+    metrics = study.run(tmp_path)
+    assert metrics == {"skipped": "skipped: ccx not found (install CalculiX, e.g. apt-get install calculix-ccx)"}
+    targets = load_targets(Path(study.__file__).parent / "targets.toml", "mechanics/calculix")
+    verdicts = evaluate(targets, metrics)
+    assert len(verdicts) == 4 and all(v.state == "skipped" and not v.counts_as_miss for v in verdicts)
+    assert "skipped: ccx not found" in study.page(metrics)
