@@ -90,3 +90,17 @@ def test_section_area_of_a_sheared_and_stretched_rectangle():
     area = 50.0 * 80.0
     assert section_area_mm2(mesh) == pytest.approx(area, rel=1e-12)
     assert section_area_mm2(mesh, u) == pytest.approx(area * ((1 + a) * (1 + d) - b * c), rel=1e-12)
+
+
+@pytest.mark.slow
+def test_budget_of_ring_a_condition_1_adds_up(tmp_path):
+    """Issue 21: the budget of the reference ring A (condition 1) closes to 0.002 mm on ID, OD and width."""
+    from quenchsim.case import load_case
+    from quenchsim.pipeline import run
+    from quenchsim.validation import ROOT
+    summary = run(load_case(ROOT / "cases" / "crb_outer_ring.toml", "1"), tmp_path / "A1", progress=False).summary
+    budget = summary["distortion_budget_mm"]
+    for key in ("id", "od", "width"):
+        assert budget["total"][key] == pytest.approx(summary["dimensions_mm"]["change"][key], abs=1e-9)
+        assert abs(sum(budget["parts"][p][key] for p in PARTS) - budget["total"][key]) < 2e-3
+        assert abs(budget["parts"]["elastic_residue"][key]) < 1e-4
