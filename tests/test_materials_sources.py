@@ -1,0 +1,37 @@
+"""Every number of the shipped mechanical material files has a source, and none is marked placeholder
+or assumed (issue 21)."""
+
+import re
+import tomllib
+from pathlib import Path
+
+import pytest
+
+MATERIALS = Path(__file__).resolve().parents[1] / "materials"
+FORBIDDEN = re.compile(r"placeholder|assumed|\[R\]", re.IGNORECASE)
+
+
+def unsourced_numbers(table: dict, path: str = "", sourced: bool = False) -> list[str]:
+    """Dotted keys of numbers (or number lists) with no ``source`` in their table or an enclosing one.
+    Prior keys (range, range_factor) are covered by the source of their table."""
+    sourced = sourced or bool(str(table.get("source", "")).strip())
+    out = []
+    for key, value in table.items():
+        where = f"{path}.{key}" if path else key
+        if isinstance(value, dict):
+            out += unsourced_numbers(value, where, sourced)
+        elif isinstance(value, (int, float, list)) and not isinstance(value, bool) and not sourced:
+            out.append(where)
+    return out
+
+
+@pytest.mark.parametrize("path", sorted(MATERIALS.glob("*.mechanics.toml")), ids=lambda p: p.name)
+def test_every_mechanical_number_has_a_source(path):
+    data = tomllib.loads(path.read_text())
+    assert unsourced_numbers(data) == []
+    hits = [line for line in path.read_text().splitlines() if FORBIDDEN.search(line)]
+    assert hits == []
+
+
+def test_the_scan_finds_an_unsourced_number():
+    assert unsourced_numbers({"a": {"b": 1.0}, "c": {"source": "x", "d": [1, 2]}}) == ["a.b"]
