@@ -1,5 +1,5 @@
-"""Every number of the shipped mechanical material files has a source, and none is marked placeholder
-or assumed (issue 21)."""
+"""Every number of the shipped material files (steels, their mechanics, quenchants, lubricants, fit data) has a
+source, and none is marked placeholder, assumed or [R] (issues 16, 17, 21)."""
 
 import re
 import tomllib
@@ -13,8 +13,9 @@ FORBIDDEN = re.compile(r"placeholder|assumed|\[R\]", re.IGNORECASE)
 
 def unsourced_numbers(table: dict, path: str = "", sourced: bool = False) -> list[str]:
     """Dotted keys of numbers (or number lists) with no ``source`` in their table or an enclosing one.
-    Prior keys (range, range_factor) are covered by the source of their table."""
-    sourced = sourced or bool(str(table.get("source", "")).strip())
+    Prior keys (range, range_factor) are covered by the source of their table; a ``<group>_source`` key (the
+    lubricant files) sources its table too."""
+    sourced = sourced or any(bool(str(v).strip()) for k, v in table.items() if k == "source" or k.endswith("_source"))
     out = []
     for key, value in table.items():
         where = f"{path}.{key}" if path else key
@@ -25,8 +26,8 @@ def unsourced_numbers(table: dict, path: str = "", sourced: bool = False) -> lis
     return out
 
 
-@pytest.mark.parametrize("path", sorted(MATERIALS.glob("*.mechanics.toml")), ids=lambda p: p.name)
-def test_every_mechanical_number_has_a_source(path):
+@pytest.mark.parametrize("path", sorted(MATERIALS.rglob("*.toml")), ids=lambda p: str(p.relative_to(MATERIALS)))
+def test_every_material_number_has_a_source(path):
     data = tomllib.loads(path.read_text())
     assert unsourced_numbers(data) == []
     hits = [line for line in path.read_text().splitlines() if FORBIDDEN.search(line)]
