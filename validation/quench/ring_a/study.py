@@ -99,7 +99,7 @@ def dims_row(label: str, d: dict[str, Any] | None) -> str:
 
 def page(metrics: dict[str, Any]) -> str:
     rel, cond = metrics["relative_to_condition_1"], metrics["conditions"]
-    md = ["Reference: the heat-treatment report summarised in quench_cases.md (measured and published values with "
+    md = ["Reference: the heat-treatment report summarised in docs/reference/quench_cases.md (measured and published values with "
           "their sources in targets.toml, checked in the table at the end). Verification of the solvers against closed "
           "forms: quench/thermal_verification, mechanics/verification, materials/cct.", "",
           "## Cooling at the section centre relative to condition 1 (`relative_to_condition_1`)", "",
