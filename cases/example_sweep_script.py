@@ -29,7 +29,7 @@ from quenchsim.sweep import make_sweep, run_sweep  # noqa: E402
 OIL_HTC = {"T_C": [50, 150, 250, 350, 450, 550, 650, 750, 850],
            "h_W_m2K": [300, 400, 600, 1200, 2500, 4000, 2000, 600, 400],
            "ambient_C": 80.0}
-"""Generic medium-speed mineral oil, as in cases/crb_outer_ring.toml (materials_and_kinetics.md sec. 3)."""
+"""Generic medium-speed mineral oil, as in cases/crb_outer_ring.toml (docs/reference/materials_and_kinetics.md sec. 3)."""
 AIR_HTC = {"T_C": [25, 850], "h_W_m2K": [10, 90], "ambient_C": 25.0}
 """Still air: natural convection ~10 W/m2K near room temperature plus radiation (~80 W/m2K at 850 C, eps 0.8)."""
 

@@ -367,13 +367,17 @@ class QuenchRun:
 
     # -- summary --------------------------------------------------------------------------------
     def mechanics_summary(self, final: FinalSection) -> dict[str, Any]:
-        """Dimensions before/after, residual stresses at mid-width, traverse and outline files."""
+        """Dimensions before/after and their distortion budget, residual stresses at mid-width, traverse and
+        outline files."""
         before = mechanics.ring_dimensions(self.before_mesh)
         after = mechanics.ring_dimensions(self.section.mesh, self.mech.displacement_m)
         r_mm, hoop, axial = residual_traverse(final, self.mech.nodal_fields())
         self.writer.residual_traverse(r_mm, hoop, axial)
         self.writer.outline(mechanics.section_outline(self.before_mesh) / MM, final.outline_m / MM)
+        budget = mechanics.distortion_budget(self.mech, self.before_mesh, self.thermal.T_qp, self.thermal.fractions(),
+                                             self.mech_model.annealed_free_strain)
         return {"dimensions_mm": mechanics.dimension_change(before, after),
+                "distortion_budget_mm": budget,
                 "residual_stress_MPa": residual_stress_summary(hoop, axial)}
 
     def summary(self, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wall0: float) -> dict[str, Any]:

@@ -176,7 +176,8 @@ def metric_value(metrics: dict[str, Any], name: str) -> Any:
 @dataclass(frozen=True)
 class Verdict:
     """A target against the computed value: ``met``, ``missed``, ``open`` (a known miss; ``open, met`` once it
-    passes: then close it), ``reference`` or ``absent`` (the study returned no such metric: a miss)."""
+    passes: then close it), ``reference``, ``absent`` (the study returned no such metric: a miss) or
+    ``skipped`` (the study skipped itself, e.g. a peer code that is not installed: not evaluated, no miss)."""
 
     target: Target
     value: float | None
@@ -187,7 +188,13 @@ class Verdict:
         return self.state in ("missed", "absent", "open")
 
 
+SKIPPED = "skipped"
+"""A study that cannot run here (a peer code is not installed) returns ``{"skipped": "skipped: why"}``."""
+
+
 def evaluate(targets: list[Target], metrics: dict[str, Any]) -> list[Verdict]:
+    if isinstance(metrics.get(SKIPPED), str):
+        return [Verdict(t, None, SKIPPED) for t in targets]
     out = []
     for t in targets:
         v = metric_value(metrics, t.metric)
@@ -224,7 +231,7 @@ def target_table(verdicts: list[Verdict]) -> list[str]:
     for v in verdicts:
         t = v.target
         state = {"met": "met", "missed": "**MISSED**", "absent": "**MISSED** (no value)", "open": "open (known miss)",
-                 "open, met": "open, now met", "reference": "reference"}[v.state]
+                 "open, met": "open, now met", "reference": "reference", SKIPPED: "skipped (not evaluated)"}[v.state]
         what = _cell(t.metric + (f": {t.description}" if t.description else ""))
         note = f" -- open: {t.reason}" if t.status == "open" else ""
         lines.append(f"| {what} | {_fmt_value(v.value)} | {t.describe()} | {state} | {t.role} | "
@@ -441,7 +448,8 @@ def run_study(study: Study, reports_dir: Path, runs_dir: Path = RUNS, force: boo
         fingerprint = study_fingerprint(study)
         record = cached_metrics(study, reports_dir)
         t0 = time.perf_counter()
-        if not force and record is not None and record.get("fingerprint") == fingerprint:
+        if (not force and record is not None and record.get("fingerprint") == fingerprint
+                and not isinstance(record["metrics"].get(SKIPPED), str)):  # a skipped study is retried
             status, metrics, seconds = "cached", record["metrics"], float(record.get("seconds", 0.0))
             files = list(record.get("files", []))
         else:
@@ -463,6 +471,8 @@ def run_study(study: Study, reports_dir: Path, runs_dir: Path = RUNS, force: boo
             (reports_dir / f"{study.slug}.json").write_text(text)
             metrics = json.loads(text)["metrics"]
         verdicts = evaluate(study.targets, metrics)
+        if isinstance(metrics.get(SKIPPED), str):
+            status = SKIPPED
         (reports_dir / f"{study.slug}.md").write_text(page_markdown(study, metrics, verdicts, fingerprint))
         return StudyResult(study.key, status, seconds, files=[f"{study.slug}.md", f"{study.slug}.json", *files],
                            verdicts=verdicts)

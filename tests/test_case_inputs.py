@@ -183,3 +183,21 @@ def test_derived_cases_are_checked_again():
     with pytest.raises(InputError, match="mesh.size_mm = -5.0"):
         case.with_overrides({"mesh.size_mm": -5.0})
     assert case.with_overrides({"air.until_max_C": None}).air.until_max_C == 40.0   # None: back to the default
+
+
+def test_mesh_picture_colours_each_named_segment_once_with_its_legend_entry():
+    from quenchsim.commands.mesh import segments_figure
+    from quenchsim.geometry.profile import MM
+
+    case = load_case(CASE_A, "1")
+    section = mesh_profile(case.profile, 10 * MM, 3 * MM, 10 * MM)
+    ax = segments_figure(section).axes[0]
+    lines = [c for c in ax.collections if c.get_label() in section.boundaries]
+    assert sorted(c.get_label() for c in lines) == sorted(section.boundaries)
+    colours = [tuple(np.round(c.get_colors()[0], 6)) for c in lines]
+    assert len(set(colours)) == len(colours)
+    from matplotlib.colors import to_rgba
+
+    legend = {t.get_text(): tuple(np.round(to_rgba(h.get_color()), 6))
+              for t, h in zip(ax.get_legend().get_texts(), ax.get_legend().legend_handles)}
+    assert legend == {c.get_label(): col for c, col in zip(lines, colours)}

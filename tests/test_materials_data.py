@@ -9,7 +9,7 @@ from quenchsim.materials import PHASES, load_material, thermal_properties
 from quenchsim.metallurgy import load_kinetics
 
 STEELS = ("SUJ2", "SUJ3", "100Cr6_furlan")
-# JIS G4805 ranges (wt %), shared/reference/quench_cases.md
+# JIS G4805 ranges (wt %), docs/reference/quench_cases.md
 JIS = {"SUJ2": {"C": (0.95, 1.10), "Si": (0.15, 0.35), "Mn": (0.0, 0.50), "Cr": (1.30, 1.60)},
        "SUJ3": {"C": (0.95, 1.10), "Si": (0.40, 0.70), "Mn": (0.90, 1.15), "Cr": (0.90, 1.20)}}
 

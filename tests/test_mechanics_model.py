@@ -22,13 +22,14 @@ def _raw(name):
 
 SUJ3 = load_mechanics(_raw("SUJ3"), {})
 FURLAN = load_mechanics(_raw("100Cr6_furlan"), {"plasticity": False, "trip": False})
+RATIO = _raw("SUJ3")["mechanics"]["free_strain"]["steel_to_cementite_density_ratio"]["value"]
 
 
 def test_specific_volume_free_strain_closed_form():
     # linear free strain of martensite at 20 C relative to austenite at 850 C, from the file's numbers
     aus = _raw("SUJ3")["austenitisation"]
     c_b, c_m = 1.0, float(np.interp(850.0, aus["T_aust_C"], aus["dissolved_wt"]["C"]))  # the metallurgy's value
-    phi_c = (c_b - c_m) / (6.67 - c_m) * 1.021
+    phi_c = (c_b - c_m) / (6.67 - c_m) * RATIO
     dv = (1 - phi_c) * (4.64 - 0.53 * c_m) / 100
     expected = (1 + dv) ** (1 / 3) * (1 + 11.7e-6 * 0.0) / (1 + 22.2e-6 * 830) - 1
     assert float(free_strain(SUJ3, 20.0, {"martensite": 1.0})) == pytest.approx(expected, rel=1e-12)
@@ -143,10 +144,35 @@ def test_matrix_carbon_follows_the_austenitising_temperature():
     aus = _raw("SUJ3")["austenitisation"]
     for model, T in ((low, 830.0), (high, 860.0)):
         c_m = float(np.interp(T, aus["T_aust_C"], aus["dissolved_wt"]["C"]))
-        phi_c = (1.0 - c_m) / (6.67 - c_m) * 1.021
+        phi_c = (1.0 - c_m) / (6.67 - c_m) * RATIO
         assert model.volume_change["martensite"] == pytest.approx((1 - phi_c) * (4.64 - 0.53 * c_m) / 100, rel=1e-12)
     raw = _raw("SUJ3")
     raw.pop("austenitisation")
     with pytest.raises(InputError) as err:
         load_mechanics(raw, {})
     assert err.value.field == "SUJ3.mechanics.free_strain.carbon_matrix_wt_pct"
+
+
+@pytest.mark.parametrize("mutate, field", [
+    (lambda m: m["plastic"]["hardening_Pa"]["per_phase"].update(martensite=-1e9),
+     "SUJ3.mechanics.plastic.hardening_Pa.per_phase.martensite"),
+    (lambda m: m["elastic"]["E_Pa"]["per_phase"].update(austenite={"poly_T_C": [2.0e11, -3.0e8]}),
+     "SUJ3.mechanics.elastic.E_Pa.per_phase.austenite"),
+    (lambda m: m["trip"]["K_1_Pa"]["per_phase"].update(bainite=5e-5), "SUJ3.mechanics.trip.K_1_Pa.per_phase.bainite"),
+    (lambda m: m["free_strain"]["alpha_1_K"]["per_phase"].update(
+        austenite={"T_C": [100.0, 600.0], "value": [22e-6, 23e-6]}),
+     "SUJ3.mechanics.free_strain.alpha_1_K.per_phase.austenite.T_C"),
+    (lambda m: m["trip"]["K_1_Pa"]["per_phase"].update(martensite={"value": 3e-10, "range": [5e-11, 2.1e-10]}),
+     "SUJ3.mechanics.trip.K_1_Pa.per_phase.martensite.value"),
+    (lambda m: m["elastic"]["nu"].update(range_factor=0.5), "SUJ3.mechanics.elastic.nu.range_factor"),
+])
+def test_bad_mechanical_data_gets_a_one_line_error_naming_file_and_field(mutate, field):
+    """Issue 21: a flow curve falling with strain, a negative modulus, a TRIP constant outside 1e-12..1e-9 /Pa,
+    an expansion table not covering the temperatures used, a value outside its prior range."""
+    import copy
+    raw = copy.deepcopy(_raw("SUJ3"))
+    mutate(raw["mechanics"])
+    with pytest.raises(InputError) as err:
+        load_mechanics(raw, {})
+    assert err.value.field == field
+    assert "\n" not in str(err.value)

@@ -38,7 +38,7 @@ def _hold(kin, T_C: float, times_s: np.ndarray):
 
 
 def test_li_sigmoid_integral_matches_published_values():
-    # S(X) of Li 1998 eq. 13, values computed in shared/reference/materials_and_kinetics.md 1b
+    # S(X) of Li 1998 eq. 13, values computed in docs/reference/materials_and_kinetics.md 1b
     for X, S in [(0.001, 0.02639), (0.01, 0.1043), (0.5, 1.026), (0.99, 1.947)]:
         assert li_sigmoid_integral(X) == pytest.approx(S, rel=2e-3)
 

@@ -12,7 +12,7 @@ from quenchsim.materials import load_material
 from quenchsim.metallurgy import advance, hardness_HV, hv_to_hrc, initial_state, load_kinetics, phase_hardness_HV
 from quenchsim.metallurgy.cct import cct_diagram, critical_rate_C_s
 
-T_AUST = 840.0  # mid of the 830-850 C practice for through-hardening SUJ2/SUJ3 (quench_cases.md)
+T_AUST = 840.0  # mid of the 830-850 C practice for through-hardening SUJ2/SUJ3 (docs/reference/quench_cases.md)
 
 
 @pytest.fixture(scope="module")
@@ -22,7 +22,7 @@ def kinetics():
 
 def test_dissolved_carbon_is_used_for_ms(kinetics):
     """Ms with the carbon dissolved at T_aust lands at the measured 210-230 C (ShKh15 210, 100Cr6 229,
-    100CrMnSi6-4 210: materials_and_kinetics.md 1a); the bulk 1 %C would give far less."""
+    100CrMnSi6-4 210: docs/reference/materials_and_kinetics.md 1a); the bulk 1 %C would give far less."""
     for name, kin in kinetics.items():
         assert 0.55 <= kin.dissolved["C"] <= 0.7 < kin.composition["C"]
         assert 205.0 <= kin.Ms_C <= 235.0, (name, kin.Ms_C)
@@ -41,7 +41,7 @@ def test_peer_100cr6_ms_and_alpha():
 @pytest.mark.parametrize("name", ["SUJ2", "SUJ3"])
 def test_retained_austenite_after_oil_quench_about_ten_percent(kinetics, name):
     """Oil quench (fast enough to be martensitic) into oil at 70 C, then air to 20 C: RA about 10 % as measured in
-    oil-quenched 52100 (materials_and_kinetics.md 1a/2c); in the oil at 70 C it is still higher."""
+    oil-quenched 52100 (docs/reference/materials_and_kinetics.md 1a/2c); in the oil at 70 C it is still higher."""
     kin = kinetics[name]
     s = initial_state((1,), kin)
     s = advance(s, kin, T_AUST, 70.0, (T_AUST - 70.0) / 60.0)

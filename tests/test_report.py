@@ -21,7 +21,8 @@ from quenchsim.sweep import make_sweep, run_sweep
 
 ROOT = Path(__file__).resolve().parents[1]
 RUN_PLOTS = ["Cooling curves at the probes", "Phase fractions, final state", "Hardness map, final state",
-             "Hardness-depth traverse", "Distortion x10 over the pre-quench outline", "Residual hoop-stress traverse"]
+             "Hardness-depth traverse", "Distortion x10 over the pre-quench outline", "Residual hoop-stress traverse",
+             "Distortion budget: what the dimension change is made of"]
 MEASURED = {"source": "made-up numbers for the test", "before_mm": {"id": 40.0, "od": 50.0, "width": 20.0},
             "after_mm": {"id": 40.03, "od": 50.05}}
 
@@ -76,6 +77,13 @@ def test_run_report_shows_every_plot_and_the_dimension_table(dirs, report):
     assert float(cells[2]) == pytest.approx(summary["dimensions_mm"]["change"]["id"], rel=1e-3)
     assert float(cells[5]) == pytest.approx(0.03, rel=1e-3)
     assert float(cells[6]) == pytest.approx(summary["dimensions_mm"]["change"]["id"] - 0.03, rel=1e-3, abs=1e-6)
+    # distortion budget: its total is the run's dimension change and its parts add up to it
+    budget = summary["distortion_budget_mm"]
+    for key in ("id", "od", "width"):
+        assert budget["total"][key] == pytest.approx(summary["dimensions_mm"]["change"][key], abs=1e-9)
+        assert abs(sum(part[key] for part in budget["parts"].values()) - budget["total"][key]) < 2e-3
+    row = re.search(r"<tr><td>total \(after - before\)</td>(.*?)</tr>", html).group(1)
+    assert float(re.findall(r"<td>([^<]*)</td>", row)[0]) == pytest.approx(budget["total"]["id"], rel=1e-3, abs=1e-6)
     # the Markdown twin links the same plots, written as files
     md = written[1].read_text()
     links = re.findall(r"!\[([^\]]+)\]\(([^)]+)\)", md)

@@ -4,10 +4,14 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import Any
+
+import numpy as np
 
 from quenchsim.case import load_case
+from quenchsim.figures import subplots
 from quenchsim.errors import require
-from quenchsim.geometry import mesh_profile
+from quenchsim.geometry import SectionMesh, mesh_profile
 from quenchsim.geometry.profile import MM
 
 
@@ -29,21 +33,25 @@ def run(args: argparse.Namespace) -> int:
     print(f"{section.n_elements} triangles, {section.mesh.p.shape[1]} nodes; segments: "
           + ", ".join(f"{k} ({len(v)} edges)" for k, v in section.boundaries.items()))
     if args.png:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        fig, ax = plt.subplots(figsize=(5, 8))
-        p = section.mesh.p / MM
-        ax.triplot(p[0], p[1], section.mesh.t.T, lw=0.3, color="0.5")
-        for name, facets in section.boundaries.items():
-            f = section.mesh.facets[:, facets]
-            ax.plot(p[0][f], p[1][f], lw=2)
-            ax.plot([], [], lw=2, label=name)
-        ax.set_aspect("equal")
-        ax.set_xlabel("r (mm)")
-        ax.set_ylabel("z (mm)")
-        ax.legend(fontsize=7)
-        fig.savefig(args.png, dpi=150, bbox_inches="tight")
+        segments_figure(section).savefig(args.png, dpi=150, bbox_inches="tight")
     return 0
+
+
+def segments_figure(section: SectionMesh) -> Any:
+    """The mesh with every named boundary segment drawn in one colour of its own, named in the legend."""
+    from matplotlib import colormaps
+    from matplotlib.collections import LineCollection
+
+    fig, ax = subplots(figsize=(5, 8))
+    p = section.mesh.p / MM
+    ax.triplot(p[0], p[1], section.mesh.t.T, lw=0.3, color="0.6")
+    colours = colormaps["tab10" if len(section.boundaries) <= 10 else "tab20"]
+    for i, (name, facets) in enumerate(section.boundaries.items()):
+        f = section.mesh.facets[:, facets]                       # (2, n) vertex indices of the segment's edges
+        edges = np.stack([p[:, f[0]].T, p[:, f[1]].T], axis=1)   # (n, 2 points, 2 coordinates)
+        ax.add_collection(LineCollection(edges, colors=[colours(i)], linewidths=2.5, label=name))
+    ax.set_aspect("equal")
+    ax.set_xlabel("r (mm)")
+    ax.set_ylabel("z (mm)")
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5))
+    return fig

@@ -5,7 +5,8 @@ The section boundary is the chain of boundary edges of the P2 mesh, each split a
 moved by the displacement.  ID/OD are twice the smallest/largest radius where the horizontal line
 through the middle of the section's axial extent cuts the boundary (for a spherical raceway the ID is
 the raceway diameter at mid-width); the width is the axial extent where the vertical line through the
-middle of the wall at that height cuts the boundary.
+middle of the wall at that height cuts the boundary.  The section's area is that of the deformed
+(curved) P2 mesh.
 """
 
 from __future__ import annotations
@@ -54,6 +55,21 @@ def ring_dimensions(mesh: MeshTri, displacement_m: np.ndarray | None = None) -> 
     r_in, r_out = r_cut.min(), r_cut.max()
     z_cut = _cuts(seg, 0, 0.5 * (r_in + r_out))
     return {"id": 2e3 * r_in, "od": 2e3 * r_out, "width": 1e3 * float(z_cut.max() - z_cut.min())}
+
+
+def section_area_mm2(mesh: MeshTri, displacement_m: np.ndarray | None = None) -> float:
+    """Area (mm^2) of the section ``mesh`` (metres) moved by ``displacement_m`` (vector-P2 DOFs; None =
+    undeformed): int det(I + grad u) dA over the undeformed mesh, exact for the curved P2 elements
+    (the integrand is quadratic, integrated at order 2)."""
+    basis = Basis(mesh, ElementVector(ElementTriP2()), intorder=2)
+    if displacement_m is None:
+        return 1e6 * float(np.sum(basis.dx))
+    u = np.asarray(displacement_m, dtype=float)
+    if u.shape != (basis.N,):
+        raise InputError("displacement_m", u.shape, f"must have the {basis.N} DOFs of the vector P2 basis")
+    g = basis.interpolate(u).grad  # g[i, j] = d u_i / d x_j, (2, 2, ne, nq)
+    det = (1.0 + g[0, 0]) * (1.0 + g[1, 1]) - g[0, 1] * g[1, 0]
+    return 1e6 * float(np.sum(det * basis.dx))
 
 
 def dimension_change(before: dict[str, float], after: dict[str, float]) -> dict[str, dict[str, float]]:

@@ -40,6 +40,14 @@ FREE_STRAIN_FORMS = ("specific_volume", "expansion")
 TRIP_LAWS = ("desalos", "leblond")
 OPTION_KEYS = ("plasticity", "trip", "austenitizing_T_C", "newton_rtol", "max_newton_iterations")
 
+TRIP_K_BOUNDS_1_PA = (1e-12, 1e-9)
+"""Plausible TRIP constants of the product phases (1/Pa); the published ranges for steels are 4-21e-11
+(DEFORM manual, section 10.9, TRNSFP: 4-13e-5 /MPa diffusive, 5-21e-5 /MPa martensitic)."""
+PRIOR_KEYS = ("range", "range_factor")
+"""Uncertain values carry a prior for calibration: ``{ value = v, range = [lo, hi], source = ... }`` (lo <= v <= hi)
+or ``range_factor = f >= 1`` (the value times/divided by f) on any property table or per-phase entry; the run uses
+the value."""
+
 LEBLOND_CUTOFF = 0.03
 """Leblond's TRIP kinetics use -ln(f); below f = 0.03 the slope is frozen at -ln(0.03)
 (Leblond, Devaux, Devaux, Int. J. Plast. 5 (1989) 573 -- cut-off of the logarithm)."""
@@ -244,6 +252,8 @@ def _volume_changes(fs: Mapping[str, Any], prefix: str, material: Mapping[str, A
     out = {"austenite": 0.0}
     for phase in PHASES[1:]:
         coeffs = table.get(phase)
+        if isinstance(coeffs, Mapping):
+            coeffs = coeffs.get("value")
         if (not isinstance(coeffs, (list, tuple)) or len(coeffs) != 2
                 or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in coeffs)):
             raise InputError(f"{prefix}.volume_change_pct.{phase}", coeffs, "must be [a, b] with dV/V (%) = a + b*C")
@@ -257,7 +267,9 @@ def load_mechanics(material: Mapping[str, Any], options: Mapping[str, Any] | Non
     Options: ``plasticity`` (bool, default true), ``trip`` (bool, default true),
     ``austenitizing_T_C`` (stress-free temperature; default the material file's
     ``[reference] austenitizing_T_C``), ``newton_rtol`` (default 1e-8), ``max_newton_iterations``
-    (default 25).  Thermo-elastic mode = plasticity and trip false.  Errors name the field.
+    (default 25).  Thermo-elastic mode = plasticity and trip false.  Errors name the field
+    (``NAME.mechanics.<field>``: the file materials/NAME.mechanics.toml and the key); priors
+    (:data:`PRIOR_KEYS`) are checked by :func:`check_priors`, the data by :func:`check_data`.
     """
     options = dict(options or {})
     name = str(material.get("name", "material"))
@@ -265,6 +277,7 @@ def load_mechanics(material: Mapping[str, Any], options: Mapping[str, Any] | Non
     prefix = f"{name}.mechanics"
     if not isinstance(mech, Mapping):
         raise InputError(prefix, mech, f"material needs materials/{name}.mechanics.toml (or a [mechanics] table)")
+    check_priors(mech, prefix)
     for key in options:
         if key not in OPTION_KEYS:
             raise InputError(f"mechanics.{key}", options[key], f"unknown option; allowed: {', '.join(OPTION_KEYS)}")
@@ -337,7 +350,74 @@ def load_mechanics(material: Mapping[str, Any], options: Mapping[str, Any] | Non
         if law not in TRIP_LAWS:
             raise InputError(f"{prefix}.trip.law", law, f"must be one of {TRIP_LAWS}")
         model_args["trip_law"] = law
-    return MechanicsModel(**model_args)
+    model = MechanicsModel(**model_args)
+    check_data(model, prefix)
+    return model
+
+
+def check_priors(spec: Any, field: str) -> None:
+    """Every ``range`` / ``range_factor`` in a material table (recursively): range = [lo, hi] numbers with
+    lo <= hi holding the value when the value is a number; range_factor a number >= 1."""
+    if isinstance(spec, Mapping):
+        if "range" in spec:
+            rng = spec["range"]
+            ok = (isinstance(rng, (list, tuple)) and len(rng) == 2
+                  and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in rng) and rng[0] <= rng[1])
+            if not ok:
+                raise InputError(f"{field}.range", rng, "must be [lo, hi] numbers with lo <= hi")
+            value = spec.get("value")
+            if isinstance(value, (int, float)) and not isinstance(value, bool) and not rng[0] <= value <= rng[1]:
+                raise InputError(f"{field}.value", value, f"must lie in its range [{rng[0]}, {rng[1]}]")
+        if "range_factor" in spec:
+            f = spec["range_factor"]
+            if isinstance(f, bool) or not isinstance(f, (int, float)) or f < 1.0:
+                raise InputError(f"{field}.range_factor", f, "must be a number >= 1")
+        for key, sub in spec.items():
+            if key not in PRIOR_KEYS:
+                check_priors(sub, f"{field}.{key}")
+
+
+def _phase_values(prop: Property, phase: str, T_C: np.ndarray) -> np.ndarray:
+    """The values that define a phase's property over T_C: a table's own values (plus T_C), else the samples."""
+    sub = prop.for_phase(phase)
+    return np.concatenate([sub(T_C), sub.values]) if sub.kind == "table" else sub(T_C)
+
+
+def check_data(model: MechanicsModel, prefix: str, T_room_C: float = 20.0) -> None:
+    """Physical checks of the parsed data over the temperatures a quench uses, [min(T_ref, T_room), T_aust]:
+    E > 0, 0 <= nu < 0.5, yield > 0, hardening >= 0 (a flow curve monotone in strain), product-phase TRIP
+    constants in TRIP_K_BOUNDS_1_PA (austenite: 0), expansion tables covering the range.  One-line errors
+    naming the material file's field."""
+    T_lo = min(model.reference_T_C, T_room_C)
+    T = np.linspace(T_lo, model.austenitizing_T_C, 50)
+    checks = [("elastic.E_Pa", model.E_Pa, lambda v: v > 0.0, "must be > 0 (a Young's modulus)"),
+              ("elastic.nu", model.nu, lambda v: (v >= 0.0) & (v < 0.5), "must be in [0, 0.5)")]
+    if model.yield_Pa is not None:
+        checks += [("plastic.yield_Pa", model.yield_Pa, lambda v: v > 0.0, "must be > 0"),
+                   ("plastic.hardening_Pa", model.hardening_Pa, lambda v: v >= 0.0,
+                    "must be >= 0: the flow curve sigma_y + H p must not fall with strain")]
+    for name, prop, ok, rule in checks:
+        for phase in PHASES:
+            values = _phase_values(prop, phase, T)
+            bad = ~ok(values)
+            if bad.any():
+                where = f"{prefix}.{name}" + (f".per_phase.{phase}" if prop.phase_dependent else "")
+                raise InputError(where, float(values[bad][0]), rule)
+    if model.trip_K_1_Pa is not None:
+        lo, hi = TRIP_K_BOUNDS_1_PA
+        for phase in PHASES:
+            K = _phase_values(model.trip_K_1_Pa, phase, T)
+            where = f"{prefix}.trip.K_1_Pa" + (f".per_phase.{phase}" if model.trip_K_1_Pa.phase_dependent else "")
+            if phase == "austenite" and np.any(K != 0.0):
+                raise InputError(where, float(K[K != 0.0][0]), "austenite does not transform: K must be 0")
+            if phase != "austenite" and np.any((K < lo) | (K > hi)):
+                raise InputError(where, float(K[(K < lo) | (K > hi)][0]), f"a TRIP constant must lie in [{lo:g}, {hi:g}] 1/Pa")
+    for phase in PHASES:
+        sub = model.alpha_1_K.for_phase(phase)
+        if sub.kind == "table" and (sub.T_C[0] > T_lo + 1e-9 or sub.T_C[-1] < model.austenitizing_T_C - 1e-9):
+            where = f"{prefix}.free_strain.alpha_1_K" + (f".per_phase.{phase}" if model.alpha_1_K.phase_dependent else "")
+            raise InputError(f"{where}.T_C", [float(sub.T_C[0]), float(sub.T_C[-1])],
+                             f"the table must cover the temperatures used, {T_lo:g}-{model.austenitizing_T_C:g} C")
 
 
 def austenitized_scale(model: MechanicsModel) -> float:

@@ -50,11 +50,6 @@ def jmak_exponent(X_start: float, X_finish: float, time_ratio: float) -> float:
     return float(np.log(np.log1p(-X_finish) / np.log1p(-X_start)) / np.log(time_ratio))
 
 
-def jmak_fraction(t_s: np.ndarray, tau_s: np.ndarray, n: np.ndarray) -> np.ndarray:
-    """Isothermal JMAK (Avrami) law X = 1 - exp(-(t/tau)^n)."""
-    return -np.expm1(-np.power(np.asarray(t_s, dtype=float) / tau_s, n))
-
-
 def li_rate(T_C: np.ndarray, T_upper_C: float, ln_F: float, beta_grain: float, grain_ASTM: float,
             n_undercooling: float, Q_cal_mol: float) -> np.ndarray:
     """1/tau_1(T) of Li et al. 1998 (eqs. 18-23): 2^{beta G} (T_u - T)^n exp(-Q/RT) / F, in 1/s.
@@ -91,8 +86,10 @@ def c_curve_ln_inverse_tau(T_C: np.ndarray, T_upper_C: float, T_ref_C: float, ta
     return np.where(dT > 0.0, value, -np.inf)
 
 
-def koistinen_marburger(T_C: np.ndarray, Ms_C: float, alpha_per_K: float) -> np.ndarray:
-    """Koistinen & Marburger (1959): fraction of austenite turned to martensite, 1 - exp(-alpha (Ms - T)) below Ms."""
+def koistinen_marburger(T_C: np.ndarray, Ms_C: float | np.ndarray, alpha_per_K: float) -> np.ndarray:
+    """Koistinen & Marburger (1959): fraction of austenite turned to martensite, 1 - exp(-alpha (Ms - T)) below Ms
+    (``Ms_C`` may be an array: the incremental form of :func:`quenchsim.metallurgy.advance` passes the lowest
+    temperature reached so far)."""
     return -np.expm1(-alpha_per_K * np.maximum(Ms_C - np.asarray(T_C, dtype=float), 0.0))
 
 

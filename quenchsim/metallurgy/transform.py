@@ -30,6 +30,7 @@ import numpy as np
 
 from quenchsim.materials.properties import PHASES
 from quenchsim.metallurgy.kinetics import Kinetics
+from quenchsim.metallurgy.laws import koistinen_marburger
 
 MAYNIER_RATE_T_C = 700.0
 """Temperature at which Maynier et al. (1978) take the cooling rate V_r of their hardness equations."""
@@ -133,7 +134,7 @@ def advance(state: PhaseState, kin: Kinetics, T_old_C: np.ndarray, T_new_C: np.n
                 q[r][sel] = qs[r]
             f = f - consumed
         T_ref = np.minimum(T_min[sel], kin.Ms_C)
-        converted = f * -np.expm1(-kin.alpha_per_K * np.maximum(T_ref - Tb, 0.0))
+        converted = f * koistinen_marburger(Tb, T_ref, kin.alpha_per_K)
         products["martensite"][sel] += converted
         fA[sel] = f - converted
         T_min[sel] = np.minimum(T_min[sel], Tb)

@@ -120,6 +120,34 @@ def distortion(r_before_mm: np.ndarray, z_before_mm: np.ndarray, r_after_mm: np.
     return _png(fig)
 
 
+BUDGET_LABELS = {"free_strain": "free strain vs annealed", "thermal_plasticity": "thermal plasticity",
+                 "transformation_plasticity": "transformation plasticity", "elastic_residue": "elastic residue"}
+BUDGET_PANELS = {"id": "ID change (mm)", "od": "OD change (mm)", "width": "width change (mm)",
+                 "area_mm2": "section area change (mm$^2$)"}
+
+
+def distortion_budget(budget: dict[str, Any], title: str) -> bytes:
+    """One bar chart per dimension of the ``distortion_budget_mm`` block of summary.json: a bar per part
+    and the total (hatched)."""
+    parts = [p for p in BUDGET_LABELS if p in budget.get("parts", {})]
+    keys = [k for k in BUDGET_PANELS if k in budget.get("total", {})]
+    fig, axes = subplots(1, len(keys), figsize=(3.0 * len(keys) + 0.6, 3.8), squeeze=False)
+    colours = ["tab:blue", "tab:orange", "tab:green", "tab:gray"]
+    for ax, key in zip(axes[0], keys):
+        values = [budget["parts"][p][key] for p in parts] + [budget["total"][key]]
+        bars = ax.bar(range(len(values)), values, color=colours[:len(parts)] + ["white"], edgecolor="black", lw=0.6)
+        bars[-1].set_hatch("//")
+        ax.axhline(0.0, color="black", lw=0.6)
+        ax.set_xticks(range(len(values)))
+        ax.set_xticklabels([BUDGET_LABELS[p] for p in parts] + ["total"], rotation=40, ha="right", fontsize=7)
+        ax.set_title(BUDGET_PANELS[key], fontsize=9)
+        ax.tick_params(axis="y", labelsize=7)
+        ax.grid(True, axis="y", lw=0.3)
+    fig.suptitle(f"Distortion budget: {title}")
+    fig.tight_layout()
+    return _png(fig)
+
+
 def stress_traverse(r_mm: np.ndarray, curves: dict[str, np.ndarray], title: str) -> bytes:
     """Residual stress against radius at mid-width (MPa)."""
     fig, ax = subplots(figsize=(7.0, 4.2))

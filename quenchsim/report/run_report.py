@@ -159,6 +159,20 @@ def _dimension_table(run: RunResults, missing: list[str]) -> list[Item]:
         source = (run.case or {}).get("measured", {}).get("source")
         if source:
             items.append(Item("text", "Measurements", text=f"Measured: {source}."))
+    budget = (run.summary or {}).get("distortion_budget_mm")
+    if budget:
+        items.append(Item("image", "Distortion budget: what the dimension change is made of",
+                          image=plots.distortion_budget(budget, run.title)))
+        parts = list(budget.get("parts", {}))
+        keys = list(budget.get("total", {}))
+        items.append(Item("table", "Distortion budget (mm; area in mm2)", header=["part", *keys],
+                          rows=[[plots.BUDGET_LABELS.get(p, p), *[budget["parts"][p].get(k) for k in keys]] for p in parts]
+                          + [["total (after - before)", *[budget["total"].get(k) for k in keys]],
+                             ["sum of parts - total", *[budget.get("sum_minus_total", {}).get(k) for k in keys]]]))
+        items.append(Item("text", "Budget method", text=budget.get("method", "")))
+    else:
+        missing.append("distortion budget: summary.json has no distortion_budget_mm (a run without mechanics, or an "
+                       "older run)")
     rs = (run.summary or {}).get("residual_stress_MPa")
     if rs:
         locations = list(dict.fromkeys(k for comp in rs.values() for k in comp))

@@ -1,7 +1,7 @@
 """Gas journal bearings, plain and herringbone-grooved: compressible Reynolds equation in divergence
 (finite-volume) form on a skewed grid, FAS multigrid, static characteristics, orbits and stability.
 
-Reference: ../shared/reference/bearing_modules.md, section 1 (ASME J. Tribology 121 (1999) 148).
+Reference: docs/reference/bearing_modules.md, section 1 (ASME J. Tribology 121 (1999) 148).
 """
 
 from quenchsim.bearings.gas_journal.geometry import Bearing, Grid, Grooves, effective_ratios, grid_for_level

@@ -1,6 +1,6 @@
 """Bearing and groove geometry, the computational grid and the film per control-volume face.
 
-Non-dimensional coordinates (reference: bearing_modules.md section 1): theta circumferential
+Non-dimensional coordinates (reference: docs/reference/bearing_modules.md section 1): theta circumferential
 (radians), Z = z / r axial, measured from a bearing end (Z = 0, ambient) to the mid-plane
 (Z = L / D, symmetry). Grooves are inclined by the groove angle beta to the circumferential
 direction, so the grid is skewed along them:

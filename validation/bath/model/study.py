@@ -26,7 +26,7 @@ SLOW = True
 CASES = {"A": (ROOT / "cases" / "crb_outer_ring.toml", ("1", "2", "3")),
          "B": (ROOT / "cases" / "srb_outer_ring.toml", ("4", "5", "6"))}
 
-# The two process inputs the report does not print, varied over the typical practice it names (quench_cases.md:
+# The two process inputs the report does not print, varied over the typical practice it names (docs/reference/quench_cases.md:
 # 830-860 C austenitising, 60-100 C oil); the case file's defaults are 845 C and 60 C.
 UNPRINTED_INPUT_VARIANTS = (("oil 80 C", {"quench.bath.oil_temperature_C": 80.0}),
                             ("oil 100 C", {"quench.bath.oil_temperature_C": 100.0}),

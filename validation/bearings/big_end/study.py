@@ -516,7 +516,7 @@ def _write(reports_dir: pathlib.Path) -> list[pathlib.Path]:
         "# Big-end needle roller bearing of a two-stroke engine: planar dynamics",
         "",
         "Model:",
-        "`quenchsim/bearings/big_end/` (reference: ../shared/reference/bearing_modules.md section 6). "
+        "`quenchsim/bearings/big_end/` (reference: docs/reference/bearing_modules.md section 6). "
         f"Machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores shared with other jobs "
         "(wall times are inflated by the load).",
         "",

@@ -1,6 +1,6 @@
 """Report page of the gas journal bearing module: reports/bearing_gas_journal.md + PNGs.
 
-Studies (reference: ../shared/reference/bearing_modules.md section 1): Raimondi's six plain-bearing
+Studies (reference: docs/reference/bearing_modules.md section 1): Raimondi's six plain-bearing
 points (static and orbit method), grid convergence, depth-0 grooves, narrow-groove limit, solver
 benchmark (levels 3-6, Lambda 1/10/100, four methods) and the stability threshold of rotor A-1.
 """
@@ -290,7 +290,7 @@ def _write(reports_dir: pathlib.Path) -> list[pathlib.Path]:
     start = time.perf_counter()
     lines = ["# Gas journal bearings: plain and herringbone-grooved (multigrid Reynolds solver)", "",
              "Model, checks and reference "
-             "numbers: ../shared/reference/bearing_modules.md section 1. Load F = W / (pa L D), attitude from the load "
+             "numbers: docs/reference/bearing_modules.md section 1. Load F = W / (pa L D), attitude from the load "
              "line to the line of centres, T = omega t / 2, Mbar = m pa c^5 / (2 mu^2 L r^5).", ""]
     files: list[pathlib.Path] = []
     part, figs = _raimondi(reports_dir)

@@ -18,7 +18,7 @@ from quenchsim.fitting.plots import plot_cct_overlay, plot_jominy, plot_ttt
 from quenchsim.materials import load_material, materials_dir
 from quenchsim.metallurgy import hv_to_hrc, load_kinetics
 from quenchsim.metallurgy.cct import critical_rate_C_s
-from quenchsim.simulation import run_case
+from quenchsim.pipeline import run as run_case
 
 TITLE = "SUJ3: kinetics from the closest published data (100Cr6) + the ring A condition-1 calibration point"
 SLOW = True

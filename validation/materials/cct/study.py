@@ -107,7 +107,7 @@ def run(workdir: pathlib.Path) -> dict:
         "Furlan et al. (2025) fits of 100Cr6 / 100CrMnSi6-4. Hardness: Maynier (1978) per phase, martensite with the "
         "dissolved carbon capped at 900 HV (67 HRC), pearlite with the bulk composition, retained austenite 300 HV "
         "(stated estimate); HRC by ASTM E140 Table 1.",
-        "- No numeric catalogue CCT of SUJ2/SUJ3 was available to compare with (materials_and_kinetics.md 2c); "
+        "- No numeric catalogue CCT of SUJ2/SUJ3 was available to compare with (docs/reference/materials_and_kinetics.md 2c); "
         "the checks below are qualitative and against the published point values that exist.",
         "",
     ]

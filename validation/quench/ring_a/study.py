@@ -9,6 +9,7 @@ quench/sensitivity, so an interrupted ``quenchsim validate`` resumes where it st
 
 from __future__ import annotations
 
+import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -75,6 +76,7 @@ def run(workdir: Path) -> dict[str, Any]:
             "HRC58_depth_bore_mm": s["hardness"]["depth_mm"]["HRC58_bore_mid"],
             "HRC58_depth_od_mm": s["hardness"]["depth_mm"]["HRC58_od_mid"],
             "core_HRC": s["hardness"]["core_HRC"], "dimensions_mm": s.get("dimensions_mm"),
+            "distortion_budget_mm": s.get("distortion_budget_mm"),
             "phases_final": s.get("phases_final"), "residual_stress_MPa": s.get("residual_stress_MPa")}
     plots = [cooling_plot(runs[c], f"A{c}", f"case A, condition {c}", workdir) for c in CONDITIONS]
     _png(workdir / "validation_A1_maps.png", report_plots.field_maps(
@@ -88,6 +90,45 @@ def run(workdir: Path) -> dict[str, Any]:
     return metrics
 
 
+def model_history(study_file: str) -> list[dict[str, Any]]:
+    """The earlier models' results kept beside a study (``model_history.toml``; empty when absent)."""
+    path = Path(study_file).with_name("model_history.toml")
+    return tomllib.loads(path.read_text())["model"] if path.is_file() else []
+
+
+def old_versus_new(history: list[dict[str, Any]], cond: dict[str, Any], dims: tuple[str, str, str]) -> list[str]:
+    """Dimension change, HRC58 depth and core hardness of every earlier model and of this run, per condition."""
+    md = ["| condition | model | " + " | ".join(f"{d} change mm" for d in dims) + " | HRC58 depth mm | core HRC |",
+          "|---|---|" + "---|" * (len(dims) + 2)]
+    keys = ("id", "od", "width")
+    for c, s in cond.items():
+        for i, m in enumerate(history):
+            old = m["conditions"].get(c)
+            if old:
+                md.append(f"| {c} | ({i + 1}) | " + " | ".join(f"{old['change_mm'][k]:+.3f}" for k in keys)
+                          + f" | {old['HRC58_depth_bore_mm']:.1f} | {old['core_HRC']:.1f} |")
+        change = (s.get("dimensions_mm") or {}).get("change")
+        md.append(f"| {c} | **this run** | " + (" | ".join(f"**{change[k]:+.3f}**" for k in keys) if change else "- | - | -")
+                  + f" | **{s['HRC58_depth_bore_mm']:.1f}** | **{s['core_HRC']:.1f}** |")
+    md += [""] + [f"({i + 1}) {m['label']}; {m['source']}." for i, m in enumerate(history)] + [""]
+    return md
+
+
+def budget_table(cond: dict[str, Any], dims: tuple[str, str, str]) -> list[str]:
+    """The distortion budget of every condition (summary.json ``distortion_budget_mm``)."""
+    keys = ("id", "od", "width")
+    md = ["| condition | part | " + " | ".join(f"{d} mm" for d in dims) + " | section area mm^2 |",
+          "|---|---|" + "---|" * 4]
+    for c, s in cond.items():
+        b = s.get("distortion_budget_mm")
+        if not b:
+            continue
+        for part, v in [*b["parts"].items(), ("total (after - before)", b["total"]), ("sum - total", b["sum_minus_total"])]:
+            md.append(f"| {c} | {part.replace('_', ' ')} | " + " | ".join(f"{v[k]:+.4f}" for k in keys)
+                      + f" | {v['area_mm2']:+.3f} |")
+    return md + [""]
+
+
 def dims_row(label: str, d: dict[str, Any] | None) -> str:
     """A table row: ID/OD/width after and their changes (mm)."""
     if not d:
@@ -99,7 +140,7 @@ def dims_row(label: str, d: dict[str, Any] | None) -> str:
 
 def page(metrics: dict[str, Any]) -> str:
     rel, cond = metrics["relative_to_condition_1"], metrics["conditions"]
-    md = ["Reference: the heat-treatment report summarised in quench_cases.md (measured and published values with "
+    md = ["Reference: the heat-treatment report summarised in docs/reference/quench_cases.md (measured and published values with "
           "their sources in targets.toml, checked in the table at the end). Verification of the solvers against closed "
           "forms: quench/thermal_verification, mechanics/verification, materials/cct.", "",
           "## Cooling at the section centre relative to condition 1 (`relative_to_condition_1`)", "",
@@ -119,7 +160,11 @@ def page(metrics: dict[str, Any]) -> str:
            "Measured after quench and the report's own simulation: targets table at the end.", "",
            "| | ID after | OD after | width after | ID change | OD change | width change |", "|---|---|---|---|---|---|---|"]
     md += [dims_row(f"quenchsim condition {c}", s["dimensions_mm"]) for c, s in cond.items()]
-    md.append("")
+    md += ["", "### Old versus new", ""] + old_versus_new(model_history(__file__), cond, ("ID", "OD", "width"))
+    md += ["### Distortion budget: what makes the ring grow or shrink", "",
+           "Each strain part applied alone to the section (final moduli, the run's supports); the parts add up to the "
+           "dimension change (`sum - total`). Method: quenchsim/mechanics/budget.py, README \"What a run writes\".", ""]
+    md += budget_table(cond, ("ID", "OD", "width"))
     for c in cond:
         md += metrics["plots_md"]["mechanics"][c]
     return "\n".join(md)
