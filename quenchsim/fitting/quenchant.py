@@ -127,8 +127,14 @@ def cooling_figures(time_s: np.ndarray, centre_C: np.ndarray) -> dict[str, float
     """The data-sheet figures of a centre curve: maximum cooling rate, its temperature, rate at 300 C, and
     the times to 600, 400 and 200 C (ISO 9950 reports)."""
     rate = -np.gradient(centre_C, time_s)
-    i = int(np.argmax(rate))
-    return {"CRmax_C_s": float(rate[i]), "T_CRmax_C": float(centre_C[i]),
+    i = int(np.clip(np.argmax(rate), 1, rate.size - 2))
+    # vertex of the parabola through the three samples around the maximum (smooth in the curve's parameters)
+    t3, r3 = time_s[i - 1:i + 2], rate[i - 1:i + 2]
+    a, b, c = np.polyfit(t3 - t3[1], r3, 2)
+    dt_peak = float(np.clip(-b / (2 * a), t3[0] - t3[1], t3[2] - t3[1])) if a < 0 else 0.0
+    rate_max = float(c + b * dt_peak + a * dt_peak**2) if a < 0 else float(r3[1])
+    T_at_max = float(np.interp(t3[1] + dt_peak, time_s, centre_C))
+    return {"CRmax_C_s": rate_max, "T_CRmax_C": T_at_max,
             "CR300_C_s": _at_temperature(centre_C, rate, 300.0),
             **{f"t_to_{T:.0f}C_s": _at_temperature(centre_C, time_s, T) for T in (600.0, 400.0, 200.0)}}
 
@@ -194,11 +200,12 @@ def quasi_steady_htc(time_s: np.ndarray, centre_C: np.ndarray, model: ProbeModel
 
 @dataclass
 class ProbeFit:
-    """The fitted curve h(T_s) and how well it re-simulates the probe curve."""
+    """The fitted curve h(T_s) and how well it re-simulates the probe curve (``data``) or, for the data-sheet
+    shortcut, the published figures (``data`` None, ``measured`` the figures)."""
 
     T_C: np.ndarray
     h_W_m2K: np.ndarray
-    data: ProbeData
+    data: ProbeData | None
     bath_C: float
     curve: ProbeCurve
     residual_rms: float
@@ -213,6 +220,7 @@ class ProbeFit:
     seconds: float
     measured: dict[str, float] = field(default_factory=dict)
     simulated: dict[str, float] = field(default_factory=dict)
+    shape: "CurveShape | None" = None
 
 
 class _Problem:
@@ -335,3 +343,242 @@ def _time_curve(data: ProbeData, start_C: float) -> tuple[np.ndarray, np.ndarray
     if data.kind == TIME_TEMPERATURE:
         return data.time_s, data.temperature_C
     return time_of_rate_curve(data.temperature_C, data.rate_C_s, start_C), data.temperature_C
+
+
+# --- the data-sheet shortcut ------------------------------------------------------------------------------
+
+FIGURES = ("CRmax_C_s", "T_CRmax_C", "CR300_C_s", "t_to_600C_s", "t_to_400C_s", "t_to_200C_s")
+"""The ISO 9950 / ASTM D6200 report figures a data sheet prints (D6200 section 1.1 of materials/SOURCES.md)."""
+SHAPE_PARAMETERS = ("h_film_W_m2K", "transition_K", "h_peak_W_m2K", "T_peak_C", "h_300_W_m2K", "h_low_W_m2K")
+
+
+@dataclass(frozen=True)
+class CurveShape:
+    """h(T_s) of the data-sheet shortcut, piecewise linear through (T_low, h_low), (300 C, h_300),
+    (T_peak, h_peak), (T_peak + transition, h_film) and constant h_film above: a film plateau, a transition
+    up to the boiling peak, the fall through nucleate boiling to convection. T_low is 30 K above the bath."""
+
+    h_film_W_m2K: float
+    transition_K: float
+    h_peak_W_m2K: float
+    T_peak_C: float
+    h_300_W_m2K: float
+    h_low_W_m2K: float
+
+    def nodes(self, bath_C: float, start_C: float) -> tuple[np.ndarray, np.ndarray]:
+        T_low = bath_C + 30.0
+        T_peak = float(np.clip(self.T_peak_C, 320.0, start_C - 60.0))
+        T_top = min(T_peak + max(self.transition_K, 10.0), start_C - 5.0)
+        T = [T_low, 300.0, T_peak, T_top, start_C]
+        h = [self.h_low_W_m2K, self.h_300_W_m2K, self.h_peak_W_m2K, self.h_film_W_m2K, self.h_film_W_m2K]
+        if T_low >= 300.0:  # hot oil: the bath is above 270 C -- no separate low node
+            T, h = T[1:], h[1:]
+        return np.asarray(T), np.asarray(h)
+
+
+def fit_figures(figures: dict[str, float], *, bath_C: float, shape: CurveShape, model: ProbeModel | None = None,
+                centre_step_K: float = 2.0) -> ProbeFit:
+    """The data-sheet shortcut: fit the free parameters of ``shape`` so that the probe model reproduces the
+    given report figures (at least CRmax_C_s, T_CRmax_C and CR300_C_s). With the three rate figures only,
+    h_peak, T_peak and h_300 are fitted and the film level, transition width and low-temperature level keep
+    the ratios of ``shape``; each time figure (t_to_600/400/200C_s) frees one more parameter (film level,
+    transition width, low level, in that order). The result is an approximation stated as such."""
+    for key in FIGURES[:3]:
+        require(key in figures and np.isfinite(figures[key]), f"figures.{key}", figures.get(key),
+                "the data-sheet shortcut needs CRmax_C_s, T_CRmax_C and CR300_C_s")
+    for key, value in figures.items():
+        require(key in FIGURES, f"figures.{key}", value, f"unknown figure; known: {', '.join(FIGURES)}")
+        require(np.isfinite(value) and value > 0, f"figures.{key}", value, "must be a positive number")
+    require(300.0 < figures["T_CRmax_C"] < 850.0, "figures.T_CRmax_C", figures["T_CRmax_C"], "must lie between 300 and 850 C")
+    model = model or ProbeModel(bath_temperature_C=bath_C)
+    if model.bath_C != bath_C:
+        model = ProbeModel(model.spec, model.mesh_settings, model.start_C, bath_C)
+    times = [k for k in FIGURES[3:] if k in figures]
+    free = ["h_peak_W_m2K", "T_peak_C", "h_300_W_m2K"] + ["h_film_W_m2K", "transition_K", "h_low_W_m2K"][:len(times)]
+    keys = list(FIGURES[:3]) + times
+    target = np.array([figures[k] for k in keys])
+    scale = np.array([10.0 if k == "T_CRmax_C" else 0.02 * figures[k] for k in keys])
+    base = {f: getattr(shape, f) for f in SHAPE_PARAMETERS}
+
+    def shape_of(x: np.ndarray) -> CurveShape:
+        values = dict(base)
+        for name, v in zip(free, x):
+            values[name] = float(v) if name in ("T_peak_C", "transition_K") else float(np.exp(v))
+        if "h_film_W_m2K" not in free:
+            values["h_film_W_m2K"] = shape.h_film_W_m2K / shape.h_peak_W_m2K * values["h_peak_W_m2K"]
+        if "h_low_W_m2K" not in free:
+            values["h_low_W_m2K"] = shape.h_low_W_m2K / shape.h_300_W_m2K * values["h_300_W_m2K"]
+        return CurveShape(**values)
+
+    x0 = np.array([getattr(shape, f) if f in ("T_peak_C", "transition_K") else np.log(getattr(shape, f)) for f in free])
+    t0 = time.perf_counter()
+    # step schedule from a first run of the starting shape (fixed afterwards, so the residual is smooth)
+    rough = model.cool(*shape.nodes(bath_C, model.start_C), np.arange(0.02, 300.0, 0.02))
+    t_end = 1.3 * float(np.interp(-max(bath_C + 60.0, 150.0), -rough.centre_C, rough.time_s))
+    keep = rough.time_s <= t_end
+    ends = step_schedule(rough.time_s[keep], rough.centre_C[keep], centre_step_K=centre_step_K)
+    runs = [0]
+
+    def simulate(x: np.ndarray) -> ProbeCurve:
+        runs[0] += 1
+        return model.cool(*shape_of(x).nodes(bath_C, model.start_C), ends)
+
+    def residual(x: np.ndarray) -> np.ndarray:
+        curve = simulate(x)
+        got = cooling_figures(curve.time_s, curve.centre_C)
+        return (np.array([got[k] for k in keys]) - target) / scale
+
+    lo = [np.log(20.0) if f not in ("T_peak_C", "transition_K") else (320.0 if f == "T_peak_C" else 10.0) for f in free]
+    hi = [np.log(5.0e4) if f not in ("T_peak_C", "transition_K") else (model.start_C - 60.0 if f == "T_peak_C" else 300.0)
+          for f in free]
+    sol = least_squares(residual, np.clip(x0, lo, hi), bounds=(lo, hi), diff_step=1e-2, xtol=1e-4, max_nfev=60)
+    fitted = shape_of(sol.x)
+    T_nodes, h_nodes = fitted.nodes(bath_C, model.start_C)
+    curve = simulate(sol.x)
+    simulated = cooling_figures(curve.time_s, curve.centre_C)
+    misfit = np.array([simulated[k] - figures[k] for k in keys])
+    return ProbeFit(T_C=T_nodes, h_W_m2K=h_nodes, data=None, bath_C=bath_C, curve=curve,
+                    residual_rms=float(np.sqrt(np.mean((misfit / scale) ** 2))),
+                    residual_max=float(np.max(np.abs(misfit / scale))), residual_unit="figure scale",
+                    h_std_W_m2K=np.full(T_nodes.size, np.nan), identified_C=(float(curve.surface_C.min()), model.start_C),
+                    alpha=0.0, sigma=0.0, iterations=int(sol.nfev), simulations=float(runs[0]),
+                    seconds=time.perf_counter() - t0, measured={k: float(figures[k]) for k in keys}, simulated=simulated,
+                    shape=fitted)
+
+
+SHORTCUT_SHAPE_OIL = "astm_d6200_fast_oil"
+"""The library oil whose fitted shape (film/peak and low/300 C ratios, transition width) the three-number
+shortcut keeps: the one oil fitted to all six published D6200 figures (materials/SOURCES.md)."""
+
+
+def default_shape(name: str = SHORTCUT_SHAPE_OIL) -> CurveShape:
+    """The ``[shape]`` table of a quenchant file (a data-sheet fit) or of a start-shape file."""
+    data = load_data_file(name, "quenchants", "--shape-from")
+    shape = data.get("shape")
+    if not isinstance(shape, dict):
+        raise InputError("--shape-from", name, "has no [shape] table (h_film_W_m2K, transition_K, h_peak_W_m2K, "
+                                               "T_peak_C, h_300_W_m2K, h_low_W_m2K)")
+    values = {}
+    for key in SHAPE_PARAMETERS:
+        spec = shape.get(key)
+        value = spec.get("value") if isinstance(spec, dict) else spec
+        require(isinstance(value, (int, float)) and value > 0, f"{name}.shape.{key}", value, "must be a positive number")
+        values[key] = float(value)
+    return CurveShape(**values)
+
+
+# --- the quenchant file: a still-bath curve h(T_surface) ----------------------------------------------------
+
+STILL_BATH_KIND = "still_bath_curve"
+
+
+@dataclass(frozen=True)
+class ProbeQuenchant:
+    """A still-bath HTC curve h(T_surface) from a probe test, with the test conditions it holds for.
+
+    ``h(T_surface_C)`` interpolates linearly, constant beyond the ends. ``identified_C`` is the surface-
+    temperature range the probe data saw (outside it the curve is the regularised extrapolation)."""
+
+    name: str
+    T_C: np.ndarray
+    h_W_m2K: np.ndarray
+    bath_temperature_C: float
+    agitation_m_s: float
+    identified_C: tuple[float, float]
+    method: str
+    source: str
+
+    def h(self, T_surface_C: Any) -> np.ndarray:
+        return np.interp(np.asarray(T_surface_C, dtype=float), self.T_C, self.h_W_m2K)
+
+
+def quenchant_document(fit: ProbeFit, *, name: str, source: str, tag: str, agitation_m_s: float = 0.0,
+                       description: str = "", data_file: str = "") -> dict[str, Any]:
+    """The TOML document of a fitted quenchant (see materials/quenchants/README.md for the keys)."""
+    require(source.strip() != "", "--source", source, "a quenchant file needs the source of its probe curve")
+    if fit.data is None:
+        method = ("data-sheet shortcut: the parameters of a five-node h(T_s) shape fitted so that the ISO 9950 probe "
+                  "model reproduces the published figures -- an approximation, not an inverse of a measured curve")
+    else:
+        method = (f"whole-curve inverse heat conduction on the ISO 9950 probe model: piecewise-linear ln h(T_s), "
+                  f"Tikhonov second difference alpha = {fit.alpha:g}, noise sigma = {fit.sigma:g} {fit.residual_unit}")
+    doc: dict[str, Any] = {
+        "name": name, "kind": STILL_BATH_KIND, "description": description, "source": source,
+        "test": {"probe": "iso9950_probe_inconel600", "bath_temperature_C": float(fit.bath_C),
+                 "agitation_m_s": float(agitation_m_s), "start_temperature_C": float(fit.curve.centre_C[0])},
+        "htc": {"T_C": [round(float(v), 2) for v in fit.T_C], "h_W_m2K": [round(float(v), 1) for v in fit.h_W_m2K],
+                "identified_T_C": [round(fit.identified_C[0], 1), round(fit.identified_C[1], 1)],
+                "method": method, "source": f"fitted by quenchsim quenchant from the probe data of: {source}"},
+        "fit": {"residual_rms": fit.residual_rms, "residual_max": fit.residual_max, "residual_unit": fit.residual_unit,
+                "evaluations": fit.iterations, "seconds": round(fit.seconds, 1),
+                "measured": fit.measured, "simulated": {k: round(v, 3) for k, v in fit.simulated.items()}},
+    }
+    if np.all(np.isfinite(fit.h_std_W_m2K)):
+        doc["htc"]["h_std_W_m2K"] = [round(float(v), 1) for v in fit.h_std_W_m2K]
+    curve: dict[str, Any] = {"tag": tag, "data_file": data_file}
+    if fit.data is None:
+        curve["kind"] = "figures"
+    elif fit.data.kind == TIME_TEMPERATURE:
+        t = fit.data.time_s
+        curve.update(kind=TIME_TEMPERATURE, time_s=t.tolist(), temperature_C=fit.data.temperature_C.tolist(),
+                     resimulated_C=np.round(np.interp(t, fit.curve.time_s, fit.curve.centre_C), 2).tolist())
+    else:
+        sim_rate = -np.gradient(fit.curve.centre_C, fit.curve.time_s)
+        down = np.maximum.accumulate(-fit.curve.centre_C + 1e-9 * np.arange(fit.curve.centre_C.size))
+        curve.update(kind=RATE_TEMPERATURE, temperature_C=fit.data.temperature_C.tolist(),
+                     rate_C_s=fit.data.rate_C_s.tolist(),
+                     resimulated_rate_C_s=np.round(np.interp(-fit.data.temperature_C, down, sim_rate), 3).tolist())
+    doc["curve"] = curve
+    if fit.shape is not None:
+        doc["shape"] = {k: round(float(getattr(fit.shape, k)), 2) for k in SHAPE_PARAMETERS}
+    doc["resimulated"] = {"time_s": np.round(fit.curve.time_s, 4).tolist(),
+                          "centre_C": np.round(fit.curve.centre_C, 3).tolist()}
+    return doc
+
+
+def write_quenchant(path: str | Path, doc: dict[str, Any]) -> Path:
+    import tomli_w
+
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    p.write_text(tomli_w.dumps(doc))
+    return p
+
+
+def load_probe_quenchant(path_or_name: str | Path, field: str = "quenchant") -> ProbeQuenchant:
+    """Load a still-bath curve ``materials/quenchants/NAME.toml`` (or a path ending in .toml) written by
+    ``quenchsim quenchant fit`` / ``from-datasheet``; errors name ``field``."""
+    name = str(path_or_name)
+    data = load_data_file(name, "quenchants", field)
+    stem = Path(name).stem
+    if data.get("kind") != STILL_BATH_KIND:
+        raise InputError(field, name, f"is a {data.get('kind', 'untyped')} quenchant file; a still-bath curve "
+                                      f"(kind = \"{STILL_BATH_KIND}\", from `quenchsim quenchant fit`) is needed")
+    htc, test = data.get("htc", {}), data.get("test", {})
+    T = np.asarray(htc.get("T_C", []), dtype=float)
+    h = np.asarray(htc.get("h_W_m2K", []), dtype=float)
+    require(T.size >= 2 and bool(np.all(np.diff(T) > 0)), f"{stem}.htc.T_C", htc.get("T_C"),
+            "needs >= 2 strictly increasing temperatures")
+    require(h.shape == T.shape and bool(np.all(h > 0)), f"{stem}.htc.h_W_m2K", htc.get("h_W_m2K"),
+            f"needs {T.size} positive values (one per T_C)")
+    for key in ("bath_temperature_C", "agitation_m_s"):
+        value = test.get(key)
+        require(isinstance(value, (int, float)) and not isinstance(value, bool), f"{stem}.test.{key}", value,
+                "is required (a number)")
+    lo, hi = htc.get("identified_T_C", [T[0], T[-1]])
+    return ProbeQuenchant(name=str(data.get("name", stem)), T_C=T, h_W_m2K=h,
+                          bath_temperature_C=float(test["bath_temperature_C"]),
+                          agitation_m_s=float(test["agitation_m_s"]), identified_C=(float(lo), float(hi)),
+                          method=str(htc.get("method", "")), source=str(data.get("source", "")))
+
+
+def library() -> list[str]:
+    """Names of the still-bath curves shipped in materials/quenchants/."""
+    import tomllib
+
+    names = []
+    for p in sorted((materials_dir() / "quenchants").glob("*.toml")):
+        with p.open("rb") as fh:
+            if tomllib.load(fh).get("kind") == STILL_BATH_KIND:
+                names.append(p.stem)
+    return names
