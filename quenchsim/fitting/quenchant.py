@@ -45,6 +45,8 @@ HEATING_TOLERANCE_K = 2.0
 heating, which a quenched probe's centre never does."""
 LOWEST_REQUIRED_C = 300.0
 """A probe curve must reach 300 C: the data sheet's rate at 300 C and the start of the convection stage."""
+REFERENCE_SPACING_K = 50.0
+"""Node spacing at which ``alpha`` is the weight of the second difference of ln h (other spacings are scaled)."""
 SURFACE_MARGIN_K = 20.0
 """A node's Jacobian column is re-simulated from the first step whose end has a surface point within this
 margin of the node's support (the solver's iterates may dip a little below the converged step)."""
@@ -312,7 +314,11 @@ def fit_probe_curve(data: ProbeData, *, bath_C: float | None = None, model: Prob
     for spacing_K, centre_step_K in levels:
         p, nodes = np.interp(default_nodes(model.bath_C, model.start_C, spacing_K), nodes, p), \
             default_nodes(model.bath_C, model.start_C, spacing_K)
-        problem = _Problem(data, model, nodes, alpha, sigma, step_schedule(t_curve, T_curve, centre_step_K=centre_step_K))
+        # the same smoothing of ln h(T) whatever the node spacing: the penalty approximates
+        # alpha^2 * 50 K^3 * integral (d2 ln h / dT2)^2 dT, i.e. alpha is the weight at the 50 K spacing
+        alpha_nodes = alpha * (REFERENCE_SPACING_K / spacing_K) ** 1.5
+        problem = _Problem(data, model, nodes, alpha_nodes, sigma,
+                           step_schedule(t_curve, T_curve, centre_step_K=centre_step_K))
         sol = least_squares(problem.residual, p, jac=problem.jacobian, method="trf",
                             bounds=(np.log(20.0), np.log(5.0e4)), xtol=1e-3, ftol=1e-4, max_nfev=30)
         p = sol.x
