@@ -14,7 +14,7 @@ Model choices (each checked in ``validation/quenchants/probe_fit``):
   quench: checked by the axial-length term of the mesh study).
 * Mesh: a tensor-product triangle mesh graded toward the cooled surfaces (P2 elements): a coarse mesh
   is enough because h(T) is smooth on the element scale; mesh convergence of the centre curve is a
-  test (``tests/test_fitting_quenchant_slow.py``).
+  test (``tests/test_fitting_quenchant_slow.py``) and a metric of ``validation/quenchants/probe_fit``.
 * Time steps: a fixed schedule that depends only on the measured curve (so that a fitted parameter never
   changes the step sequence, and finite-difference sensitivities are smooth): the step starts at
   ``dt_start_s`` and grows by ``growth`` per step, limited so that the measured centre temperature changes
