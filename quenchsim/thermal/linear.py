@@ -19,7 +19,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from quenchsim.fem.linalg import dot, norm, pcg, symmetric_lu
+from quenchsim.fem.linalg import norm, pcg, symmetric_lu
 
 
 class StepLinearSolver:

@@ -87,7 +87,7 @@ def run(workdir: pathlib.Path) -> dict:
         "",
         "## Synthetic coast-downs",
         f"Rotor I_eq = {FR_INERTIA:g} kg m^2 (the paper's spindle: 1.6886e-3 ... 1.7203e-3), start speed 3600 rpm,",
-        f"one pulse per revolution, pulse instants from an independent time integration (DOP853, rtol 1e-12),",
+        "one pulse per revolution, pulse instants from an independent time integration (DOP853, rtol 1e-12),",
         f"Gaussian trigger jitter {FR_JITTER_S * 1e6:g} us, quantised to a {FR_CLOCK_HZ / 1e6:g} MHz counter with random phase,",
         f"recorded down to {100 * FR_END:g} % of the start speed. {FR_SEEDS} noise realisations per law.",
         "",

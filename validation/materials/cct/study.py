@@ -90,7 +90,8 @@ def run(workdir: pathlib.Path) -> dict:
     published = study_targets(__file__)
     kins = {name: load_kinetics(load_material(name), T_AUST_C) for name in ("SUJ3", "SUJ2")}
     diagrams = {name: cct_diagram(kin, RATES_C_S, T_AUST_C) for name, kin in kins.items()}
-    paths = [plot_cct(diagrams[n], kins[n], workdir / f"cct_{n}.png") for n in kins]
+    for n in kins:
+        plot_cct(diagrams[n], kins[n], workdir / f"cct_{n}.png")
 
     lines = [
         "Austenitised at "

@@ -130,11 +130,8 @@ def calculix_stress(section: Any, model: Any, solver: Any, T_start_C: float, T_r
 
 def compare(htc_W_m2K: dict[str, float], workdir: Path, ccx: str, mesh_mm: float | None = None) -> dict[str, Any]:
     """Both codes on one history: dimension changes (mm) and residual hoop stresses (MPa) side by side."""
-    from quenchsim.mechanics import load_mechanics, ring_dimensions
-    from quenchsim.results.summary import residual_stress_summary, residual_traverse
-    from skfem import Basis, ElementTriP1
-
-    from quenchsim.fem import INTORDER
+    from quenchsim.mechanics import load_mechanics, ring_dimensions, section_outline
+    from quenchsim.results.summary import FinalSection, residual_stress_summary, residual_traverse
 
     material, case, section, before_mesh = _section(mesh_mm)
     T_start, T_room = case.process.austenitising_temperature_C, case.process.room_temperature_C
@@ -144,14 +141,15 @@ def compare(htc_W_m2K: dict[str, float], workdir: Path, ccx: str, mesh_mm: float
     workdir.mkdir(parents=True, exist_ok=True)
     u_ccx, s_ccx = calculix_stress(section, model, ours, T_start, T_room, times, temps, workdir, ccx)
     before = ring_dimensions(before_mesh)
-    p1 = Basis(section.mesh, ElementTriP1(), intorder=INTORDER)
+    # both codes' stresses sampled along the same mid-width line of the section they share
+    shared = FinalSection.of(section.mesh.p, section.mesh.t, section_outline(section.mesh))
     nv = section.mesh.p.shape[1]
     out: dict[str, Any] = {"steps": len(times)}
     fields = {"quenchsim": ours.nodal_fields(),
               "calculix": {"stress_tt_Pa": s_ccx[:nv, 2], "stress_zz_Pa": s_ccx[:nv, 1]}}
     for code, u in (("quenchsim", ours.displacement_m), ("calculix", u_ccx)):
         after = ring_dimensions(section.mesh, u)
-        rs = residual_stress_summary(*residual_traverse(section.profile, p1, fields[code])[1:])
+        rs = residual_stress_summary(*residual_traverse(shared, fields[code])[1:])
         out[code] = {"dimension_change_mm": {k: after[k] - before[k] for k in ("id", "od", "width")},
                      "hoop_MPa": {"od": rs["hoop"]["od_surface_mid"], "bore": rs["hoop"]["bore_surface_mid"]}}
     out["difference"] = {
