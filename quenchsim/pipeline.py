@@ -357,10 +357,13 @@ class QuenchRun:
 
     def _final_frame(self, vtk: Any) -> Path:
         """The last VTK frame: on the "before" (room-temperature, pre-quench) section, with ``displacement_m``
-        carrying it to the final part (warp by 1 shows the part, by 10 its distortion x10); the frames
-        before it are on the austenitised section the quench starts from, displaced from there."""
+        carrying it to the final part (warp by 1 shows the part, by 10 its distortion x10) and
+        ``displacement_from_start_m``, the solver's displacement from the austenitised start section with its
+        fixed point (the frames before it are on that section, displaced from there)."""
         fields = self.nodal_fields()
         if self.mech is not None:
+            # the solver's own displacement from the quench's start section (fixed point held) stays available
+            fields["displacement_from_start_m"] = fields["displacement_m"]
             d = self.final_vertices() - self.before_mesh.p
             fields["displacement_m"] = np.column_stack([d.T, np.zeros(d.shape[1])])
         return vtk.write(self.thermal.time_s, fields, points_rz=self.before_mesh.p)

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from quenchsim.case import load_case
+from quenchsim.results import files, load_frame
 from quenchsim.results import load as load_run
 from quenchsim.validation import ROOT, cached_run, study_module
 
@@ -25,13 +26,15 @@ def run(workdir: Path) -> dict[str, Any]:
     from skfem import Basis, ElementTriP1, MeshTri
 
     workdir = Path(workdir)
-    result = load_run(cached_run(load_case(PEER), study_module("quench/ring_a").run_dirs(workdir) / "peer_race_100Cr6"))
-    frame = result.frame
-    mesh = MeshTri(np.ascontiguousarray(frame.points[:, :2].T), np.ascontiguousarray(frame.triangles.T))
+    run_dir = cached_run(load_case(PEER), study_module("quench/ring_a").run_dirs(workdir) / "peer_race_100Cr6")
+    result = load_run(run_dir)
+    final, hot = result.frame, load_frame(sorted(run_dir.glob(f"{files.SERIES_NAME}_*.vtu"))[0])
+    # the peer's displacements are from the hot (austenitised) geometry with its fixed node, the section of the
+    # first frame (the last frame lies on the "before" section; the vertex order is the same)
+    mesh = MeshTri(np.ascontiguousarray(hot.points[:, :2].T), np.ascontiguousarray(hot.triangles.T))
     basis = Basis(mesh, ElementTriP1())
-    u = frame.point_data["displacement_m"]
-    # the displacement field lives on the hot mesh, which is the peer's geometry; the points are nudged
-    # 1e-7 m into the section (they lie on its boundary)
+    u = final.point_data["displacement_from_start_m"][:, :2]   # from the hot section, the peer's fixed node held
+    # the points are nudged 1e-7 m into the section (they lie on its boundary)
     pts = np.array([[p[0] for p in POINTS_M.values()], [p[1] for p in POINTS_M.values()]])
     eps = 1e-7
     inside = pts + np.array([[eps, -eps, 0.0], [0.0, 0.0, -eps]])
