@@ -94,37 +94,37 @@ def point_update(B, element_dofs, weights, u, base, bulk, shear, yield_Pa, harde
 @njit(cache=True)
 def stiffness_data(B, weights, bulk, shear, beta, c, normal, positions, data):
     """Sum the element tangents B^T D B r dA into ``data``, the CSR data array of the fixed pattern
-    (``positions[e, i * n_local + j]`` is the data index of local entry (i, j) of element e)."""
+    (``positions[e, i * n_local + j]`` is the data index of local entry (i, j) of element e).
+
+    With B^T P B = B^T B - b_v b_v^T / 3 an element matrix is six weighted outer products per point
+    (b_v, the four rows of B, b_n), each a contiguous 12 x 12 update."""
     ne, nq = weights.shape
     n_local = B.shape[3]
     data[:] = 0.0
     Ke = np.empty((n_local, n_local))
     bv = np.empty(n_local)
     bn = np.empty(n_local)
-    bdev = np.empty((4, n_local))
     for e in range(ne):
         Ke[:, :] = 0.0
         for q in range(nq):
             w = weights[e, q]
-            kb = bulk[e, q] * w
             kd = 2.0 * shear[e, q] * beta[e, q] * w
+            kv = bulk[e, q] * w - kd / 3.0
             ks = 2.0 * shear[e, q] * (c[e, q] - beta[e, q]) * w
             for j in range(n_local):
-                v = B[e, q, 0, j] + B[e, q, 1, j] + B[e, q, 2, j]
-                bv[j] = v
-                bdev[0, j] = B[e, q, 0, j] - v / 3.0
-                bdev[1, j] = B[e, q, 1, j] - v / 3.0
-                bdev[2, j] = B[e, q, 2, j] - v / 3.0
-                bdev[3, j] = B[e, q, 3, j]
+                bv[j] = B[e, q, 0, j] + B[e, q, 1, j] + B[e, q, 2, j]
                 bn[j] = (normal[e, q, 0] * B[e, q, 0, j] + normal[e, q, 1] * B[e, q, 1, j]
                          + normal[e, q, 2] * B[e, q, 2, j] + normal[e, q, 3] * B[e, q, 3, j])
             for i in range(n_local):
-                for j in range(i, n_local):
-                    Ke[i, j] += (kb * bv[i] * bv[j] + kd * (bdev[0, i] * bdev[0, j] + bdev[1, i] * bdev[1, j]
-                                                            + bdev[2, i] * bdev[2, j] + bdev[3, i] * bdev[3, j])
-                                 + ks * bn[i] * bn[j])
+                a_v = kv * bv[i]
+                a_n = ks * bn[i]
+                a0 = kd * B[e, q, 0, i]
+                a1 = kd * B[e, q, 1, i]
+                a2 = kd * B[e, q, 2, i]
+                a3 = kd * B[e, q, 3, i]
+                for j in range(n_local):
+                    Ke[i, j] += (a_v * bv[j] + a_n * bn[j] + a0 * B[e, q, 0, j] + a1 * B[e, q, 1, j]
+                                 + a2 * B[e, q, 2, j] + a3 * B[e, q, 3, j])
         for i in range(n_local):
-            data[positions[e, i * n_local + i]] += Ke[i, i]
-            for j in range(i + 1, n_local):
+            for j in range(n_local):
                 data[positions[e, i * n_local + j]] += Ke[i, j]
-                data[positions[e, j * n_local + i]] += Ke[i, j]
