@@ -25,6 +25,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "report": ("quenchsim.commands.report", "HTML/Markdown report of run or sweep directories"),
     "validate": ("quenchsim.commands.validate", "run the studies of validation/, write reports/, exit 1 on a missed target"),
     "view": ("quenchsim.commands.view", "off-screen render of a run's final field to PNG"),
+    "bench": ("quenchsim.commands.bench", "time the quench chain against a baseline commit, side by side (ratio)"),
 }
 
 
