@@ -71,3 +71,25 @@ def test_assembled_stiffness_is_the_derivative_of_the_internal_force():
         f_minus = asm.internal_force(return_map(asm.strain(u - d), *args).stress)[0]
         num[:, j] = (f_plus - f_minus) / (2 * h)
     assert np.abs(num - stiffness).max() < 1e-7 * np.abs(stiffness).max()
+
+
+@pytest.mark.parametrize("plastic, trip", [(True, True), (True, False), (False, True), (False, False)])
+def test_compiled_point_update_equals_the_numpy_return_map_and_force(plastic, trip):
+    mesh = v.tube_mesh(0.0, 0.01, 0.02, 2)
+    model = load_mechanics(v.uniform_material(2e11, 0.3, yield_Pa=200e6, hardening_Pa=5e9), {"trip": False})
+    asm = MechanicsSolver(mesh, model).asm
+    shape = asm.radius.shape
+    u = RNG.normal(size=asm.n_dofs) * 1e-6
+    base = RNG.normal(size=shape + (4,)) * 1.5e-3
+    k, mu = lame_bulk_shear(RNG.uniform(1.5e11, 2.1e11, shape), np.full(shape, 0.3))
+    args = (k, mu, np.full(shape, 2e8) if plastic else None, np.full(shape, 5e9) if plastic else None,
+            np.full(shape, 1e-11) if trip else None)
+    ref = return_map(asm.strain(u) - base, *args)
+    update, f_int, f_abs = asm.evaluate(u, base, *args)
+    assert not plastic or 0 < np.count_nonzero(ref.d_eq_plastic) < ref.d_eq_plastic.size
+    for name in ("stress", "beta", "c", "normal", "d_plastic_strain", "d_trip_strain", "d_eq_plastic"):
+        a, b = getattr(update, name), np.broadcast_to(getattr(ref, name), getattr(update, name).shape)
+        np.testing.assert_allclose(a, b, rtol=1e-11, atol=1e-11 * max(np.abs(b).max(), 1e-30), err_msg=name)
+    f_ref, f_abs_ref = asm.internal_force(ref.stress)
+    np.testing.assert_allclose(f_int, f_ref, rtol=0, atol=1e-11 * np.abs(f_abs_ref).max())
+    np.testing.assert_allclose(f_abs, f_abs_ref, rtol=1e-11)

@@ -1,6 +1,6 @@
 """Sparse linear-algebra pieces shared by the thermal and the mechanics solvers: a BLAS-free dot product,
-preconditioned conjugate gradients that work in place, and the symmetric-mode sparse LU both use as a
-reusable preconditioner for their symmetric positive definite step matrices."""
+preconditioned conjugate gradients that work in place (a compiled Jacobi variant), and the sparse Cholesky
+factorisation both use as a reusable preconditioner for their symmetric positive definite step matrices."""
 
 from __future__ import annotations
 
@@ -8,7 +8,8 @@ from collections.abc import Callable
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
+from cholespy import CholeskySolverD, MatrixType
+from numba import njit
 
 
 def dot(a: np.ndarray, b: np.ndarray) -> float:
@@ -21,11 +22,24 @@ def norm(a: np.ndarray) -> float:
     return float(np.sqrt(dot(a, a)))
 
 
-def symmetric_lu(A: sp.spmatrix) -> spla.SuperLU:
-    """LU of a symmetric positive definite matrix in symmetric mode (same permutation of rows and
-    columns, no pivoting): a smaller factor and faster solves than the general ordering (measured on
-    case A, 9882 DOFs: fill 0.69 M vs 0.73 M, solve 1.5 vs 1.9 ms). Raises RuntimeError on a zero pivot."""
-    return spla.splu(A.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+class SparseCholesky:
+    """Sparse Cholesky factor of a symmetric positive definite matrix (CHOLMOD's, AMD ordering, through
+    cholespy). Replaces SuperLU in symmetric mode: on the case-A stress matrix (9882 DOFs, measured in one
+    session) a solve takes 0.35 ms instead of 1.3-2.6 ms and a factorisation 42-52 ms instead of 73 ms.
+    Raises :class:`numpy.linalg.LinAlgError` when the matrix is not positive definite."""
+
+    def __init__(self, A: sp.spmatrix) -> None:
+        A = sp.csr_matrix(A)
+        try:
+            self._factor = CholeskySolverD(A.shape[0], A.indptr.astype(np.int32), A.indices.astype(np.int32),
+                                           np.ascontiguousarray(A.data, dtype=float), MatrixType.CSR)
+        except ValueError as exc:  # CHOLMOD: "Matrix is not positive definite!"
+            raise np.linalg.LinAlgError(str(exc)) from exc
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        x = np.empty(b.shape)
+        self._factor.solve(np.ascontiguousarray(b, dtype=float), x)
+        return x
 
 
 def pcg(A: sp.spmatrix, b: np.ndarray, x: np.ndarray, target: float, precondition: Callable[[np.ndarray], np.ndarray],
@@ -54,3 +68,59 @@ def pcg(A: sp.spmatrix, b: np.ndarray, x: np.ndarray, target: float, preconditio
         rz, rz_old = dot(r, z), rz
         p = z + (rz / rz_old) * p
     return None, max_iterations
+
+
+@njit(cache=True)
+def _dot(a, b):  # pragma: no cover (compiled): a loop, not BLAS (see :func:`dot`)
+    s = 0.0
+    for i in range(a.size):
+        s += a[i] * b[i]
+    return s
+
+
+@njit(cache=True)
+def _jacobi_pcg(indptr, indices, data, b, x, inv_diag, target, max_iterations):  # pragma: no cover (compiled)
+    n = b.size
+    r = b.copy()
+    for i in range(n):
+        s = 0.0
+        for k in range(indptr[i], indptr[i + 1]):
+            s += data[k] * x[indices[k]]
+        r[i] -= s
+    if np.sqrt(_dot(r, r)) <= target:
+        return 1, 0
+    z = inv_diag * r
+    p = z.copy()
+    Ap = np.empty(n)
+    rz = _dot(r, z)
+    for it in range(1, max_iterations + 1):
+        for i in range(n):
+            s = 0.0
+            for k in range(indptr[i], indptr[i + 1]):
+                s += data[k] * p[indices[k]]
+            Ap[i] = s
+        pAp = _dot(p, Ap)
+        if not pAp > 0.0:
+            return 0, it
+        step = rz / pAp
+        x += step * p
+        r -= step * Ap
+        if np.sqrt(_dot(r, r)) <= target:
+            return 1, it
+        z = inv_diag * r
+        rz_old = rz
+        rz = _dot(r, z)
+        p = z + (rz / rz_old) * p
+    return -1, max_iterations
+
+
+def jacobi_pcg(A: sp.csr_matrix, b: np.ndarray, x: np.ndarray, target: float,
+               max_iterations: int) -> tuple[bool | None, int]:
+    """:func:`pcg` with the Jacobi (diagonal) preconditioner, compiled: the same iteration without the Python
+    overhead of ~10 small array operations per iteration (the thermal solver runs ~24,000 of them per case-A
+    run). Same return values; ``x`` is updated in place."""
+    A = sp.csr_matrix(A)
+    status, iterations = _jacobi_pcg(A.indptr, A.indices, np.ascontiguousarray(A.data, dtype=float),
+                                     np.ascontiguousarray(b, dtype=float), x, 1.0 / A.diagonal(), float(target),
+                                     int(max_iterations))
+    return {1: True, 0: False, -1: None}[status], iterations

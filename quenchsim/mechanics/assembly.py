@@ -3,7 +3,7 @@
 Quadratic vector triangles (scikit-fem ``ElementVector(ElementTriP2())``); strains in Mandel form
 (rr, zz, tt, sqrt(2) rz) with eps_tt = u_r / r; integrals carry the weight r dr dz (per radian, the
 factor 2 pi cancels between internal and external forces).  The global matrix structure is computed
-once; every assembly only sums element values into the CSR data array (``np.bincount``).
+once; every assembly sums element values into the CSR data array (compiled loops: :mod:`.kernels`).
 """
 
 from __future__ import annotations
@@ -13,7 +13,8 @@ import scipy.sparse as sp
 from skfem import Basis, ElementTriP2, ElementVector, MeshTri
 
 from quenchsim.fem import INTORDER, FixedPatternAssembler, r_weights
-from quenchsim.mechanics.constitutive import M_VEC, SQRT2, PointUpdate
+from quenchsim.mechanics import kernels
+from quenchsim.mechanics.constitutive import SQRT2, YIELD_TOLERANCE, PointUpdate
 
 
 class AxisymmetricAssembler:
@@ -37,14 +38,8 @@ class AxisymmetricAssembler:
             B[:, :, 3, j] = (grad[0, 1] + grad[1, 0]) / SQRT2
         self.B = B
         self._B_rows = B.reshape(ne, nq * 4, n_local)  # (ne, nq*4, 12) view: strains and forces are batched GEMVs
-        B_vol = B[:, :, 0] + B[:, :, 1] + B[:, :, 2]  # m^T B, (ne, nq, 12)
-        B_dev = B - B_vol[:, :, None, :] / 3.0 * M_VEC[None, None, :, None]
-        # flattened (ne, nq, 144) kernels b_v b_v^T and B^T P B side by side along the quadrature axis:
-        # an element matrix is one weighted sum over 2 nq kernel rows
-        self.kernel = np.concatenate([(B_vol[:, :, :, None] * B_vol[:, :, None, :]).reshape(ne, nq, -1),
-                                      np.einsum("eqai,eqaj->eqij", B_dev, B_dev, optimize=True).reshape(ne, nq, -1)],
-                                     axis=1)
         self.pattern = FixedPatternAssembler(self.basis.element_dofs, self.n_dofs)
+        self._positions = self.pattern.scatter.reshape(ne, n_local * n_local)
 
     def strain(self, u: np.ndarray) -> np.ndarray:
         """Mandel strain (ne, nq, 4) of the displacement vector u."""
@@ -58,17 +53,42 @@ class AxisymmetricAssembler:
         return (np.bincount(dofs, weights=fe.ravel(), minlength=self.n_dofs),
                 np.bincount(dofs, weights=np.abs(fe).ravel(), minlength=self.n_dofs))
 
+    def evaluate(self, u: np.ndarray, base_strain: np.ndarray, bulk_Pa: np.ndarray, shear_Pa: np.ndarray,
+                 yield_Pa: np.ndarray | None, hardening_Pa: np.ndarray | None,
+                 d_trip_Phi_1_Pa: np.ndarray | None) -> tuple[PointUpdate, np.ndarray, np.ndarray]:
+        """The return map (:func:`~quenchsim.mechanics.constitutive.return_map`) of the elastic trial strain
+        strain(u) - ``base_strain`` at every point, and the internal force with its absolute sum (as
+        :meth:`internal_force`), in one compiled pass over the elements."""
+        shape = self.radius.shape
+        ne, nq = shape
+
+        def points(x: np.ndarray | None) -> np.ndarray:
+            return np.ascontiguousarray(np.broadcast_to(0.0 if x is None else x, shape), dtype=float)
+
+        stress, normal, d_plastic, d_trip = (np.empty((ne, nq, 4)) for _ in range(4))
+        beta, c, dp = (np.empty(shape) for _ in range(3))
+        f_int, f_abs = np.empty(self.n_dofs), np.empty(self.n_dofs)
+        bulk, shear = points(bulk_Pa), points(shear_Pa)
+        kernels.point_update(self.B, self.element_dofs, self.weights, np.ascontiguousarray(u, dtype=float),
+                             np.ascontiguousarray(base_strain, dtype=float), bulk, shear, points(yield_Pa),
+                             points(hardening_Pa), points(d_trip_Phi_1_Pa), yield_Pa is not None,
+                             d_trip_Phi_1_Pa is not None, YIELD_TOLERANCE, stress, beta, c, normal, dp, d_plastic,
+                             d_trip, f_int, f_abs)
+        update = PointUpdate(stress=stress, bulk=bulk, shear=shear, beta=beta, c=c, normal=normal,
+                             d_plastic_strain=d_plastic, d_trip_strain=d_trip, d_eq_plastic=dp)
+        return update, f_int, f_abs
+
     def stiffness(self, update: PointUpdate) -> sp.csr_matrix:
         """K = int B^T D B r dA on the fixed pattern, with the factored consistent tangent
         D = K m m + 2 mu [beta P + (c - beta) n n] (so B^T D B = K b_v b_v + 2 mu beta B^T P B
         + 2 mu (c - beta) b_n b_n with b_v = m^T B, b_n = n^T B)."""
-        w = self.weights
-        ne, n_local = self.element_dofs.shape
-        coefficient = np.concatenate([update.bulk * w, 2.0 * update.shear * update.beta * w], axis=1)
-        Ke = np.einsum("eq,eqk->ek", coefficient, self.kernel).reshape(ne, n_local, n_local)
-        soft_weight = 2.0 * update.shear * (update.c - update.beta) * w  # zero at elastic points
-        if soft_weight.any():
-            # over all elements: cheaper than gathering the plastic ones (most are plastic during a quench)
-            Bn = np.matmul(update.normal[:, :, None, :], self.B)[:, :, 0, :]  # n^T B, (ne, nq, 12)
-            Ke += np.matmul(Bn.transpose(0, 2, 1) * soft_weight[:, None, :], Bn)
-        return self.pattern.matrix(Ke)
+        shape = self.radius.shape
+
+        def points(x: np.ndarray) -> np.ndarray:
+            return np.ascontiguousarray(np.broadcast_to(x, shape), dtype=float)
+
+        data = np.empty(self.pattern.nnz)
+        kernels.stiffness_data(self.B, self.weights, points(update.bulk), points(update.shear), points(update.beta),
+                               points(update.c), np.ascontiguousarray(np.broadcast_to(update.normal, shape + (4,))),
+                               self._positions, data)
+        return self.pattern.csr(data)

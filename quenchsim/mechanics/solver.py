@@ -3,7 +3,7 @@
 Unknown: the displacement (u_r, u_z) from the hot (austenitised, stress-free) geometry on quadratic
 triangles.  Per step the material-point state (free strain, plastic and TRIP strain tensors,
 equivalent plastic strain, stress) is advanced by :func:`~quenchsim.mechanics.constitutive.return_map`
-inside a Newton iteration with the consistent tangent (inexact linear solves by LU-preconditioned CG,
+inside a Newton iteration with the consistent tangent (inexact linear solves by Cholesky-preconditioned CG,
 a predictor from the previous increment, residual line search); the state is committed only when
 Newton converges, so the caller can cut the step and retry.
 
@@ -25,10 +25,10 @@ from skfem import Basis, ElementTriP1, ElementTriP2, MeshTri
 from quenchsim.errors import InputError
 from quenchsim.fem import INTORDER
 from quenchsim.fem.linalg import norm as _norm
-from quenchsim.fem.linalg import pcg, symmetric_lu
+from quenchsim.fem.linalg import SparseCholesky, pcg
 from quenchsim.materials import PHASES
 from quenchsim.mechanics.assembly import AxisymmetricAssembler
-from quenchsim.mechanics.constitutive import M_VEC, SQRT2, PointUpdate, lame_bulk_shear, return_map, von_mises
+from quenchsim.mechanics.constitutive import M_VEC, SQRT2, PointUpdate, lame_bulk_shear, von_mises
 from quenchsim.mechanics.model import MechanicsModel, free_strain, free_strain_increment, trip_saturation
 
 LINEAR_RTOL = 1e-10
@@ -60,7 +60,7 @@ class StepInfo:
 
 
 class _LinearSolver:
-    """Solves K x = b to a relative residual ``rtol``: conjugate gradients preconditioned by the LU
+    """Solves K x = b to a relative residual ``rtol``: conjugate gradients preconditioned by the Cholesky
     factorisation of an earlier tangent (the tangent changes slowly between Newton iterations and
     steps), refactorising when CG needs more than ``max_cg`` iterations, and at the next solve when it
     needed more than ``refresh_after``.  K is symmetric positive
@@ -70,22 +70,22 @@ class _LinearSolver:
         self.max_cg = max_cg
         self.refresh_after = refresh_after
         self._stale = True
-        self._lu = None
+        self._factor = None
         self.factorizations = 0
         self.cg_iterations = 0
 
     def solve(self, K: sp.csr_matrix, b: np.ndarray, rtol: float) -> np.ndarray:
         if not self._stale:
             x = np.zeros_like(b)
-            done, its = pcg(K, b, x, rtol * _norm(b), self._lu.solve, self.max_cg)
+            done, its = pcg(K, b, x, rtol * _norm(b), self._factor.solve, self.max_cg)
             self.cg_iterations += its
             self._stale = its > self.refresh_after  # the next solve refactorises
             if done:
                 return x
-        self._lu = symmetric_lu(K)
+        self._factor = SparseCholesky(K)
         self._stale = False
         self.factorizations += 1
-        return self._lu.solve(b)
+        return self._factor.solve(b)
 
 
 @dataclass
@@ -198,8 +198,7 @@ class MechanicsSolver:
         base = free1[..., None] * M_VEC + st.plastic + st.trip
 
         def evaluate(u: np.ndarray):
-            update = return_map(asm.strain(u) - base, bulk, shear, yield_now, hardening, d_phi)
-            f_int, f_abs = asm.internal_force(update.stress)
+            update, f_int, f_abs = asm.evaluate(u, base, bulk, shear, yield_now, hardening, d_phi)
             residual = f_int - f_ext
             residual[self.fixed_dofs] = 0.0
             return update, residual, _norm(residual), _norm(f_abs)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 import skfem
+from numba import njit
 
 from quenchsim.fem import INTORDER, FixedPatternAssembler, r_weights
 
@@ -33,6 +34,8 @@ class AxisymmetricP2:
         self.n_dofs = b.N
         self.phi = np.stack([np.asarray(b.basis[i][0]) for i in range(b.Nbfun)])          # (nloc, ne, nq)
         grad = np.stack([np.asarray(b.basis[i][0].grad) for i in range(b.Nbfun)])               # (nloc, 2, ne, nq)
+        self._phi_qp = np.ascontiguousarray(self.phi.transpose(1, 2, 0))                 # (ne, nq, nloc)
+        self._grad_qp = np.ascontiguousarray(grad.transpose(2, 3, 0, 1))                 # (ne, nq, nloc, 2)
         self.r_qp, self.r_dx = r_weights(b)                                         # (ne, nq): r, r dA
         self.z_qp = np.asarray(b.global_coordinates())[1]
         self.mass_kernel = np.einsum("ieq,jeq,eq->eqij", self.phi, self.phi, self.r_dx, optimize=True)
@@ -48,15 +51,15 @@ class AxisymmetricP2:
         self.facet_normals = fb.normals                                             # (2, nf, nqf)
         self.robin_kernel = np.einsum("ifq,jfq,fq->fqij", self.fphi, self.fphi, self.facet_r_ds, optimize=True)
         self.facet_assembler = FixedPatternAssembler(fb.element_dofs, b.N)
-        # one-pass system assembly: [mass | stiffness] kernels side by side along the quadrature axis,
-        # Robin facet entries scattered into the positions of the element pattern
-        ne, nq, nloc = self.r_dx.shape + (b.Nbfun,)
-        self._volume_kernel = np.concatenate([self.mass_kernel, self.stiffness_kernel], axis=1).reshape(ne, 2 * nq, -1)
-        cell = self.assembler
-        facet = self.facet_assembler
+        # one-pass system assembly: element and Robin facet entries summed into the data array of the element
+        # pattern (a boundary facet couples only DOFs of its element, so its entries are a subset)
+        ne, nloc = self.r_dx.shape[0], b.Nbfun
+        cell, facet = self.assembler, self.facet_assembler
+        self._cell_positions = cell.scatter.reshape(ne, nloc * nloc)
         robin_pos = np.searchsorted(cell.keys(), facet.keys())
-        self._system_scatter = np.concatenate([cell.scatter, robin_pos[facet.scatter]])
-        self._robin_kernel = self.robin_kernel.reshape(self.robin_kernel.shape[0], self.robin_kernel.shape[1], -1)
+        self._facet_positions = robin_pos[facet.scatter].reshape(len(self.facets), nloc * nloc)
+        self._robin_kernel = np.ascontiguousarray(self.robin_kernel.reshape(self.robin_kernel.shape[0],
+                                                                            self.robin_kernel.shape[1], -1))
 
     # -- fields at quadrature points ------------------------------------------------------------
     def at_qp(self, u: np.ndarray) -> np.ndarray:
@@ -74,12 +77,13 @@ class AxisymmetricP2:
         return self.assembler.matrix(np.einsum("eq,eqij->eij", coefficient, self.stiffness_kernel))
 
     def system(self, mass_coefficient: np.ndarray, conductivity: np.ndarray, robin_coefficient: np.ndarray) -> sp.csr_matrix:
-        """mass(mass_coefficient) + stiffness(conductivity) + robin(robin_coefficient), assembled in one pass."""
-        volume = np.einsum("eq,eqk->ek", np.concatenate([mass_coefficient, conductivity], axis=1), self._volume_kernel)
-        facet = np.einsum("fq,fqk->fk", robin_coefficient, self._robin_kernel)
-        cell = self.assembler
-        return cell.csr(np.bincount(self._system_scatter, weights=np.concatenate([volume.ravel(), facet.ravel()]),
-                                    minlength=cell.nnz))
+        """mass(mass_coefficient) + stiffness(conductivity) + robin(robin_coefficient), assembled in one
+        compiled pass into the element pattern."""
+        data = np.empty(self.assembler.nnz)
+        _system_data(self._phi_qp, self._grad_qp, self.r_dx, np.ascontiguousarray(mass_coefficient, dtype=float),
+                     np.ascontiguousarray(conductivity, dtype=float), self._cell_positions, self._robin_kernel,
+                     np.ascontiguousarray(robin_coefficient, dtype=float), self._facet_positions, data)
+        return self.assembler.csr(data)
 
     def load(self, source: np.ndarray) -> np.ndarray:
         """int source phi_i r dA for a source given at quadrature points (ne, nq)."""
@@ -97,3 +101,35 @@ class AxisymmetricP2:
 
     def integrate_boundary(self, values_fqp: np.ndarray) -> float:
         return float(np.sum(values_fqp * self.facet_r_ds))
+
+
+@njit(cache=True)
+def _system_data(phi, grad, r_dx, mass_coefficient, conductivity, cell_positions, robin_kernel, robin_coefficient,
+                 facet_positions, data):  # pragma: no cover (compiled)
+    """data = sum over elements of int (m phi_i phi_j + k grad phi_i . grad phi_j) r dA, plus the Robin facet
+    matrices int h phi_i phi_j r ds, on the element pattern (``*_positions[e, i * nloc + j]``)."""
+    ne, nq, nloc = phi.shape
+    data[:] = 0.0
+    Ke = np.empty((nloc, nloc))
+    for e in range(ne):
+        Ke[:, :] = 0.0
+        for q in range(nq):
+            cm = mass_coefficient[e, q] * r_dx[e, q]
+            ck = conductivity[e, q] * r_dx[e, q]
+            for i in range(nloc):
+                mi = cm * phi[e, q, i]
+                gx, gz = ck * grad[e, q, i, 0], ck * grad[e, q, i, 1]
+                for j in range(i, nloc):
+                    Ke[i, j] += mi * phi[e, q, j] + gx * grad[e, q, j, 0] + gz * grad[e, q, j, 1]
+        for i in range(nloc):
+            data[cell_positions[e, i * nloc + i]] += Ke[i, i]
+            for j in range(i + 1, nloc):
+                data[cell_positions[e, i * nloc + j]] += Ke[i, j]
+                data[cell_positions[e, j * nloc + i]] += Ke[i, j]
+    nf, nqf, nk = robin_kernel.shape
+    for f in range(nf):
+        for k in range(nk):
+            s = 0.0
+            for q in range(nqf):
+                s += robin_coefficient[f, q] * robin_kernel[f, q, k]
+            data[facet_positions[f, k]] += s

@@ -7,7 +7,7 @@ depends on the step (measured on the case-A mesh, 4941 P2 DOFs):
 * short steps (dt up to ~0.5 s): the mass term dominates and Jacobi-preconditioned CG warm-started
   from the last iterate converges in 20-50 iterations (2-4 ms), cheaper than one factorisation (13 ms);
 * long steps (air cooling, dt 10-120 s): Jacobi CG needs 180-430 iterations (13-32 ms), while CG
-  preconditioned by the LU factor of an earlier step matrix converges in a few iterations of 0.5 ms.
+  preconditioned by the Cholesky factor of an earlier step matrix converges in a few iterations of 0.5 ms.
 
 :class:`StepLinearSolver` starts with Jacobi CG and, once that needs more than ``jacobi_max``
 iterations, keeps a factorisation for the rest of the run (steps only grow, except when cut).
@@ -19,7 +19,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from quenchsim.fem.linalg import norm, pcg, symmetric_lu
+from quenchsim.fem.linalg import SparseCholesky, jacobi_pcg, norm, pcg
 
 
 class StepLinearSolver:
@@ -30,7 +30,7 @@ class StepLinearSolver:
         self.jacobi_max = jacobi_max
         self.max_cg = max_cg
         self.use_factor = False
-        self._lu: spla.SuperLU | None = None
+        self._factor: SparseCholesky | None = None
         self.factorizations = 0
         self.cg_iterations = 0
 
@@ -38,30 +38,29 @@ class StepLinearSolver:
         target = self.rtol * norm(b)
         x = x0.copy()
         if not self.use_factor:
-            inv_diag = 1.0 / A.diagonal()
-            done, its = pcg(A, b, x, target, lambda r: inv_diag * r, self.jacobi_max)
+            done, its = jacobi_pcg(A, b, x, target, self.jacobi_max)
             self.cg_iterations += its
             if done is not None:
                 return x if done else spla.spsolve(A.tocsc(), b)
             self.use_factor = True  # from here on the steps are long: keep a factorisation
-        if self._lu is not None:
-            done, its = pcg(A, b, x, target, self._lu.solve, self.max_cg)
+        if self._factor is not None:
+            done, its = pcg(A, b, x, target, self._factor.solve, self.max_cg)
             self.cg_iterations += its
             if done:
                 return x
         return self._factor_and_solve(A, b)
 
     def _factor_and_solve(self, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
-        """Refactorise (symmetric mode, no pivoting) and solve; sparse LU with pivoting if the matrix is
-        not positive definite."""
+        """Refactorise (sparse Cholesky) and solve; sparse LU with pivoting if the matrix is not positive
+        definite."""
         try:
-            self._lu = symmetric_lu(A)
-        except RuntimeError:  # zero pivot: not positive definite
-            self._lu = None
+            self._factor = SparseCholesky(A)
+        except np.linalg.LinAlgError:  # not positive definite
+            self._factor = None
             return spla.spsolve(A.tocsc(), b)
         self.factorizations += 1
-        x = self._lu.solve(b)
+        x = self._factor.solve(b)
         if not norm(b - A @ x) <= 1e3 * self.rtol * norm(b):
-            self._lu = None  # an unpivoted factor of an indefinite matrix: do not reuse it
+            self._factor = None  # an inaccurate factor (ill-conditioned step matrix): do not reuse it
             return spla.spsolve(A.tocsc(), b)
         return x

@@ -1,0 +1,238 @@
+"""`quenchsim bench`: the quench-chain benchmark, this code against a baseline, side by side.
+
+Absolute times on a shared machine are noise; a ratio measured in one session, with the two codes run
+alternately on the same case, is not (much). Each run is a separate ``python -m quenchsim.cli run`` process
+(the wall time a user waits for, imports and the numba cache included); the baseline is another
+interpreter with another checkout of quenchsim installed (``--baseline-python``), or a commit that the
+command checks out into a git worktree and installs into its own venv (``--baseline-commit``).
+
+    quenchsim bench --baseline-commit cc353be                      # ring A, condition 1, default mesh, 3 x 2 runs
+    quenchsim bench --baseline-python /tmp/venv_old/bin/python --mesh 2 1 0.5 --repeat 1
+    quenchsim bench --baseline-commit cc353be --profile runs/bench/prof --out reports/bench.md
+
+Per mesh factor it prints the median wall time of each side, their ratio, the time per DOF per step, and
+the largest differences of the results (dimension change, probe t500, HRC58 depth, residual hoop stress).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import pstats
+import statistics
+import subprocess
+import sys
+import time
+import tomllib
+from pathlib import Path
+from typing import Any
+
+import quenchsim
+
+CASE = "cases/crb_outer_ring.toml"
+CONDITION = "1"
+PROBE_SCRIPT = "import pathlib, quenchsim; print(pathlib.Path(quenchsim.__file__).resolve().parents[1])"
+STAGES = ("thermal_metallurgy_s", "mechanics_s")
+"""The stages of the time loop: their sum per DOF per step is the cost that should not grow with the mesh."""
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--baseline-python", type=Path, help="interpreter that imports the baseline quenchsim")
+    parser.add_argument("--baseline-commit", help="git commit of the baseline: checked out and installed into "
+                        "a venv under --work (reused when present)")
+    parser.add_argument("--repeat", type=int, default=3, help="runs per side and mesh factor (median; default 3)")
+    parser.add_argument("--mesh", type=float, nargs="+", default=[1.0],
+                        help="mesh factors (element sizes times the factor; default 1)")
+    parser.add_argument("--case", default=CASE, help=f"case file, relative to each side's checkout (default {CASE})")
+    parser.add_argument("--condition", default=CONDITION, help=f"condition (default {CONDITION})")
+    parser.add_argument("--work", type=Path, default=Path("runs/bench"), help="run folders and the baseline venv")
+    parser.add_argument("--profile", action="store_true", help="one more run per side under cProfile at the "
+                        "first mesh factor; the top functions go into the report")
+    parser.add_argument("--out", type=Path, help="write the Markdown report here (and its JSON beside it)")
+
+
+# -- sides -------------------------------------------------------------------------------------------
+def checkout_root(python: str, env: dict[str, str], cwd: Path) -> Path:
+    """The folder holding the quenchsim package that ``python`` imports (run from ``cwd``, a folder without
+    a quenchsim package, since ``python -c`` puts the working folder first on the path)."""
+    return Path(subprocess.run([python, "-c", PROBE_SCRIPT], env=env, capture_output=True, text=True,
+                               check=True, cwd=cwd).stdout.strip())
+
+
+def baseline_from_commit(commit: str, work: Path) -> Path:
+    """A worktree of ``commit`` with its own venv (system site packages, the checkout installed editable)."""
+    source = Path(quenchsim.__file__).resolve().parents[1]
+    tree, venv = (work / f"baseline_{commit}").resolve(), (work / f"venv_{commit}").resolve()
+    if not tree.exists():
+        subprocess.run(["git", "-C", str(source), "worktree", "add", "--detach", str(tree), commit], check=True)
+    python = venv / "bin" / "python"
+    if not python.exists():
+        subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(venv)], check=True)
+        subprocess.run([str(python), "-m", "pip", "install", "-q", "--no-deps", "-e", str(tree)], check=True)
+    return python
+
+
+def side_env(root: Path | None) -> dict[str, str]:
+    """Environment of a side's runs: single-threaded BLAS (as the CLI sets) and, for this checkout, its
+    folder first on the path (for the baseline nothing, so its own install is imported)."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env.update({"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"})
+    if root is not None:
+        env["PYTHONPATH"] = str(root)
+    return env
+
+
+def mesh_overrides(case_path: Path, factor: float) -> list[str]:
+    """``--set`` options that scale the case's element sizes by ``factor``."""
+    if factor == 1.0:
+        return []
+    mesh = tomllib.loads(case_path.read_text())["mesh"]
+    return ["--set", f"mesh.size_mm={mesh['size_mm'] * factor:g}",
+            "--set", f"mesh.surface_size_mm={mesh['surface_size_mm'] * factor:g}"]
+
+
+# -- one run -----------------------------------------------------------------------------------------
+def results_of(summary: dict[str, Any]) -> dict[str, float]:
+    """The compared results: dimension changes, probe t500, HRC58 depths, residual hoop stresses."""
+    out = {f"dimension_change_{k}_mm": v for k, v in summary["dimensions_mm"]["change"].items()}
+    out.update({f"t500_{name}_s": p["t_to_500C_s"] for name, p in summary["probes"].items()
+                if isinstance(p, dict) and p.get("t_to_500C_s") is not None})
+    out.update({f"{k}_mm": v for k, v in summary["hardness"]["depth_mm"].items()})
+    out.update({f"hoop_{k}_MPa": v for k, v in summary["residual_stress_MPa"]["hoop"].items()})
+    return out
+
+
+def run_once(python: str, env: dict[str, str], root: Path, case: str, condition: str, factor: float, out: Path,
+             profile: Path | None = None) -> dict[str, Any]:
+    """One ``quenchsim run`` in its own process; its wall time, the solver's record and the results."""
+    case_path = root / case
+    prefix = [python] + (["-m", "cProfile", "-o", str(profile)] if profile else []) + ["-m", "quenchsim.cli"]
+    cmd = prefix + ["run", str(case_path), "--condition", condition, "--out", str(out), "--quiet",
+                    *mesh_overrides(case_path, factor)]
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, env=env, capture_output=True, text=True, cwd=root)
+    wall = time.perf_counter() - t0
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr[-2000:]}")
+    summary = json.loads((out / "summary.json").read_text())
+    solver = summary["solver"]
+    loop = sum(solver["stage_time_s"].get(k, 0.0) for k in STAGES)
+    return {"wall_s": wall, "loop_s": loop, "steps": solver["steps"], "dofs": solver["dofs"],
+            "loop_us_per_dof_step": 1e6 * loop / (solver["dofs"] * solver["steps"]),
+            "wall_us_per_dof_step": 1e6 * wall / (solver["dofs"] * solver["steps"]),
+            "stage_time_s": solver["stage_time_s"], "results": results_of(summary)}
+
+
+def compare(old: dict[str, float], new: dict[str, float]) -> dict[str, float]:
+    """|new - old| of every result both sides have."""
+    return {k: abs(new[k] - old[k]) for k in old if k in new}
+
+
+def median_of(runs: list[dict[str, Any]], key: str) -> float:
+    return statistics.median(r[key] for r in runs)
+
+
+# -- profile -----------------------------------------------------------------------------------------
+def top_functions(profile: Path, root: Path, n: int = 15) -> list[dict[str, Any]]:
+    """The ``n`` functions with the most own time in a cProfile dump (paths relative to the checkout)."""
+    stats = pstats.Stats(str(profile))
+    rows = []
+    for (file, line, name), (_, calls, own, cumulative, _) in stats.stats.items():  # type: ignore[attr-defined]
+        where = file.replace(str(root) + os.sep, "").replace(str(Path(sys.prefix)), "<python>")
+        rows.append({"function": f"{where}:{line}({name})", "calls": calls, "own_s": own, "cumulative_s": cumulative})
+    return sorted(rows, key=lambda r: -r["own_s"])[:n]
+
+
+# -- report ------------------------------------------------------------------------------------------
+def markdown(record: dict[str, Any]) -> str:
+    md = [f"Case `{record['case']}` condition {record['condition']}, full chain, run by `quenchsim bench` on "
+          f"{record['machine']}: {record['repeat']} runs per side and mesh factor, the two sides alternating "
+          "(baseline, this code, baseline, ...), each a separate `quenchsim run` process; medians. Other load on "
+          f"the machine: 1-minute load average {record['load_before']:.1f} before and {record['load_after']:.1f} "
+          "after the benchmark.", "",
+          f"Baseline: `{record['baseline']}`; this code: `{record['current']}`.", "",
+          "| mesh factor | DOFs | steps | baseline wall s | this code wall s | speed-up (ratio) | baseline loop us/DOF/step "
+          "| this code loop us/DOF/step | largest result differences |", "|---|---|---|---|---|---|---|---|---|"]
+    for row in record["rows"]:
+        diffs = row["largest_differences"]
+        md.append(f"| {row['mesh_factor']:g} | {row['dofs']} | {row['steps']} | {row['baseline_wall_s']:.1f} | "
+                  f"{row['current_wall_s']:.1f} | **{row['speedup']:.2f}** | {row['baseline_loop_us_per_dof_step']:.2f} | "
+                  f"{row['current_loop_us_per_dof_step']:.2f} | dimension {diffs['dimension_mm']:.2g} mm, t500 "
+                  f"{diffs['t500_s']:.2g} s, HRC58 depth {diffs['depth_mm']:.2g} mm, hoop {diffs['hoop_MPa']:.2g} MPa |")
+    if len(record["rows"]) > 1:
+        for side in ("baseline", "current"):
+            per = [r[f"{side}_loop_us_per_dof_step"] for r in record["rows"]]
+            md.append(f"\n{'Baseline' if side == 'baseline' else 'This code'}: time-loop cost per DOF per step from "
+                      f"{min(per):.2f} to {max(per):.2f} us over the mesh factors (max/min {max(per) / min(per):.2f}).")
+    md.append("\nThe loop time is the thermal + metallurgy and mechanics stages of `summary.json`; the wall time also "
+              "holds the imports, meshing, set-up and output of the process.")
+    for side, rows in record.get("profiles", {}).items():
+        md += ["", f"### Profile: {side} (cProfile, one run, own time)", "", "| function | calls | own s | cumulative s |",
+               "|---|---|---|---|"]
+        md += [f"| `{r['function']}` | {r['calls']} | {r['own_s']:.2f} | {r['cumulative_s']:.2f} |" for r in rows]
+    return "\n".join(md) + "\n"
+
+
+def largest_differences(runs_old: list[dict[str, Any]], runs_new: list[dict[str, Any]]) -> dict[str, float]:
+    diff = compare(runs_old[0]["results"], runs_new[0]["results"])
+
+    def worst(prefix: str) -> float:
+        return max((v for k, v in diff.items() if k.startswith(prefix)), default=float("nan"))
+
+    return {"dimension_mm": worst("dimension_change"), "t500_s": worst("t500"), "depth_mm": worst("HRC58"),
+            "hoop_MPa": worst("hoop")}
+
+
+def run(args: argparse.Namespace) -> int:
+    from quenchsim.errors import InputError
+
+    if (args.baseline_python is None) == (args.baseline_commit is None):
+        raise InputError("--baseline-python/--baseline-commit", None, "give exactly one of them")
+    if args.repeat < 1:
+        raise InputError("--repeat", args.repeat, "must be >= 1")
+    work = args.work.resolve()
+    work.mkdir(parents=True, exist_ok=True)
+    old_python = str(args.baseline_python or baseline_from_commit(args.baseline_commit, work))
+    new_root = Path(quenchsim.__file__).resolve().parents[1]
+    old_env, new_env = side_env(None), side_env(new_root)
+    old_root = checkout_root(old_python, old_env, work)
+    sides = {"baseline": (old_python, old_env, old_root), "current": (sys.executable, new_env, new_root)}
+    record: dict[str, Any] = {"case": args.case, "condition": args.condition, "repeat": args.repeat,
+                              "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
+                              "baseline": f"{old_root} ({old_python})", "current": f"{new_root} ({sys.executable})",
+                              "load_before": os.getloadavg()[0], "rows": []}
+    for factor in args.mesh:
+        runs: dict[str, list[dict[str, Any]]] = {"baseline": [], "current": []}
+        for rep in range(args.repeat):
+            for side, (python, env, root) in sides.items():
+                res = run_once(python, env, root, args.case, args.condition, factor, work / f"{side}_m{factor:g}_{rep}")
+                runs[side].append(res)
+                print(f"mesh x{factor:g} run {rep + 1}/{args.repeat} {side}: {res['wall_s']:.1f} s wall, "
+                      f"{res['loop_us_per_dof_step']:.2f} us/DOF/step in the loop", flush=True)
+        old_wall, new_wall = median_of(runs["baseline"], "wall_s"), median_of(runs["current"], "wall_s")
+        row = {"mesh_factor": factor, "dofs": runs["current"][0]["dofs"], "steps": runs["current"][0]["steps"],
+               "baseline_wall_s": old_wall, "current_wall_s": new_wall, "speedup": old_wall / new_wall,
+               **{f"{s}_loop_us_per_dof_step": median_of(runs[s], "loop_us_per_dof_step") for s in runs},
+               **{f"{s}_loop_s": median_of(runs[s], "loop_s") for s in runs},
+               "largest_differences": largest_differences(runs["baseline"], runs["current"]),
+               "differences": compare(runs["baseline"][0]["results"], runs["current"][0]["results"]),
+               "runs": runs}
+        record["rows"].append(row)
+        print(f"mesh x{factor:g}: baseline {old_wall:.1f} s, this code {new_wall:.1f} s, speed-up x{row['speedup']:.2f}; "
+              f"largest differences {row['largest_differences']}", flush=True)
+    if args.profile:
+        record["profiles"] = {}
+        for side, (python, env, root) in sides.items():
+            prof = work / f"{side}.prof"
+            run_once(python, env, root, args.case, args.condition, args.mesh[0], work / f"{side}_profile", profile=prof)
+            record["profiles"][side] = top_functions(prof, root)
+    record["load_after"] = os.getloadavg()[0]
+    text = markdown(record)
+    print(text)
+    if args.out:
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+        args.out.write_text(text)
+        args.out.with_suffix(".json").write_text(json.dumps(record, indent=1, default=str))
+    return 0
