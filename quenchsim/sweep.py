@@ -53,7 +53,7 @@ from tqdm import tqdm
 
 from quenchsim.case import case_from_dict
 from quenchsim.errors import InputError, require
-from quenchsim.results import RunWriter, files
+from quenchsim.results import RunWriter, files, read_summary
 
 RESULTS_CSV = "results.csv"
 SWEEP_JSON = "sweep.json"
@@ -298,7 +298,7 @@ def run_point(raw_case: dict[str, Any], case_path: str | None, condition: str | 
         summary = run_case(case, out, progress=False).summary
         status, error = str(summary.get("status", "ok")), summary.get("error")
     except Exception as exc:  # noqa: BLE001 -- a sweep records any failure of a case and goes on
-        summary = json.loads(summary_path.read_text()) if summary_path.is_file() else None
+        summary = read_summary(out)
         status, error = "failed", f"{type(exc).__name__}: {exc}"
         log.debug("case %s failed:\n%s", out, traceback.format_exc())
     if status != "ok":
@@ -311,10 +311,10 @@ def finished(case_dir: Path, inputs_hash: str) -> dict[str, Any] | None:
     """The summary of a case folder that finished with status ok for the same inputs, else None."""
     try:
         record = json.loads((case_dir / CASE_JSON).read_text())
-        summary = json.loads((case_dir / files.SUMMARY_JSON).read_text())
     except (OSError, ValueError):
         return None
-    return summary if record.get("inputs_hash") == inputs_hash and summary.get("status") == "ok" else None
+    summary = read_summary(case_dir)
+    return summary if summary and record.get("inputs_hash") == inputs_hash and summary.get("status") == "ok" else None
 
 
 class ResultsTable:

@@ -9,7 +9,7 @@ run goes; :mod:`quenchsim.results.postprocess` turns the final state into the su
 """
 
 from quenchsim.results import files
-from quenchsim.results.reader import Frame, RunResults, last_frame, load, load_frame
+from quenchsim.results.reader import Frame, RunResults, last_frame, load, load_frame, read_summary
 from quenchsim.results.writer import RunWriter
 
-__all__ = ["files", "Frame", "RunResults", "RunWriter", "last_frame", "load", "load_frame"]
+__all__ = ["files", "Frame", "RunResults", "RunWriter", "last_frame", "load", "load_frame", "read_summary"]

@@ -19,6 +19,15 @@ from quenchsim.errors import InputError
 from quenchsim.results import files
 
 
+def read_summary(run_dir: str | Path) -> dict[str, Any] | None:
+    """A run folder's ``summary.json`` (None when it is missing or not valid JSON: a run still going, or killed
+    while the file was replaced)."""
+    try:
+        return json.loads((Path(run_dir) / files.SUMMARY_JSON).read_text())
+    except (OSError, ValueError):
+        return None
+
+
 def last_frame(run_dir: Path) -> Path | None:
     """The last ``.vtu`` of a run: the last entry of ``results.pvd``, else the highest-numbered file."""
     pvd = run_dir / files.SERIES_PVD
