@@ -33,6 +33,7 @@ import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
+from collections.abc import Callable
 from typing import Any
 
 from quenchsim.errors import InputError
@@ -357,6 +358,25 @@ def _toml(case: Any) -> str:
     import tomli_w
 
     return tomli_w.dumps(case.resolved())
+
+
+def page_written_by(write: Callable[[Path], list], metrics: dict[str, Any], workdir: Path) -> dict[str, Any]:
+    """Run a study whose page code writes its own Markdown page (and PNGs) into ``workdir`` while recording its
+    named metrics in ``metrics``: the metrics plus the page's body as ``page_md`` (the runner writes the title)."""
+    metrics.clear()
+    paths = [Path(p) for p in write(Path(workdir))]
+    page_file = next(p for p in paths if p.suffix == ".md")
+    lines = page_file.read_text().splitlines()
+    page_file.unlink()
+    body = lines[1:]
+    while body and not body[0].strip():
+        body = body[1:]
+    return {**metrics, "page_md": "\n".join(body) + "\n"}
+
+
+def written_page(metrics: dict[str, Any]) -> str:
+    """The ``page`` of a study run through :func:`page_written_by`."""
+    return metrics["page_md"]
 
 
 def cached_run(case: Any, run_dir: Path) -> Path:

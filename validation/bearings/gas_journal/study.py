@@ -24,7 +24,7 @@ from quenchsim.bearings.gas_journal.orbit import mass_from_parameter, orbit
 from quenchsim.bearings.gas_journal.reynolds import METHODS, operator_hierarchy, solve
 from quenchsim.bearings.gas_journal.stability import critical_mass_parameter
 
-from quenchsim.validation import study_targets
+from quenchsim.validation import page_written_by, study_targets, written_page
 
 TITLE = "Gas journal bearings: plain and herringbone-grooved (multigrid Reynolds solver)"
 SLOW = True
@@ -323,16 +323,7 @@ METRICS: dict = {}
 
 def run(workdir: pathlib.Path) -> dict:
     """Run the study: the page code writes its page and PNGs into ``workdir``; the page becomes the body."""
-    METRICS.clear()
-    paths = [pathlib.Path(p) for p in _write(pathlib.Path(workdir))]
-    page_file = next(p for p in paths if p.suffix == ".md")
-    lines = page_file.read_text().splitlines()
-    page_file.unlink()
-    body = lines[1:]  # the runner writes the title
-    while body and not body[0].strip():
-        body = body[1:]
-    return {**METRICS, "page_md": "\n".join(body) + "\n"}
+    return page_written_by(_write, METRICS, workdir)
 
 
-def page(metrics: dict) -> str:
-    return metrics["page_md"]
+page = written_page

@@ -23,6 +23,7 @@ from quenchsim.bearings.runout import run as runout_run
 from quenchsim.bearings.runout.analysis import analyse, simulate, spectra_and_peaks
 from quenchsim.bearings.runout.linear2d import series_spring_N_m
 from quenchsim.bearings.runout.plots import orbit_plot, spectrum_plot
+from quenchsim.validation import page_written_by, written_page
 
 TITLE = "Ball-bearing run-out / NRRO (quasi-static 2-D linear-spring and 3-D Hertz models)"
 SLOW = False
@@ -504,16 +505,7 @@ METRICS: dict = {}
 
 def run(workdir: pathlib.Path) -> dict:
     """Run the study: the page code writes its page and PNGs into ``workdir``; the page becomes the body."""
-    METRICS.clear()
-    paths = [pathlib.Path(p) for p in _write(pathlib.Path(workdir))]
-    page_file = next(p for p in paths if p.suffix == ".md")
-    lines = page_file.read_text().splitlines()
-    page_file.unlink()
-    body = lines[1:]  # the runner writes the title
-    while body and not body[0].strip():
-        body = body[1:]
-    return {**METRICS, "page_md": "\n".join(body) + "\n"}
+    return page_written_by(_write, METRICS, workdir)
 
 
-def page(metrics: dict) -> str:
-    return metrics["page_md"]
+page = written_page

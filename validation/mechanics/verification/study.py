@@ -17,6 +17,7 @@ from quenchsim.mechanics import verification as v
 from quenchsim.mechanics.dimensions import ring_dimensions
 from quenchsim.mechanics.model import free_strain, load_mechanics
 from quenchsim.mechanics.solver import MechanicsSolver
+from quenchsim.validation import page_written_by, written_page
 
 TITLE = "Mechanics solver: verification and benchmark"
 SLOW = True
@@ -236,16 +237,7 @@ METRICS: dict = {}
 
 def run(workdir: pathlib.Path) -> dict:
     """Run the study: the page code writes its page and PNGs into ``workdir``; the page becomes the body."""
-    METRICS.clear()
-    paths = [pathlib.Path(p) for p in _write(pathlib.Path(workdir))]
-    page_file = next(p for p in paths if p.suffix == ".md")
-    lines = page_file.read_text().splitlines()
-    page_file.unlink()
-    body = lines[1:]  # the runner writes the title
-    while body and not body[0].strip():
-        body = body[1:]
-    return {**METRICS, "page_md": "\n".join(body) + "\n"}
+    return page_written_by(_write, METRICS, workdir)
 
 
-def page(metrics: dict) -> str:
-    return metrics["page_md"]
+page = written_page

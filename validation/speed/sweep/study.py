@@ -28,6 +28,7 @@ from typing import Any
 from quenchsim.report import report_plots
 from quenchsim.report.run_report import fmt, response_columns
 from quenchsim.sweep import RESULTS_CSV, load_sweep, read_results
+from quenchsim.validation import page_written_by, written_page
 
 TITLE = "Parameter sweeps on Dask: the ring-A nozzle sweep"
 SLOW = True
@@ -174,16 +175,7 @@ METRICS: dict = {}
 
 def run(workdir: pathlib.Path) -> dict:
     """Run the study: the page code writes its page and PNGs into ``workdir``; the page becomes the body."""
-    METRICS.clear()
-    paths = [pathlib.Path(p) for p in _write(pathlib.Path(workdir))]
-    page_file = next(p for p in paths if p.suffix == ".md")
-    lines = page_file.read_text().splitlines()
-    page_file.unlink()
-    body = lines[1:]  # the runner writes the title
-    while body and not body[0].strip():
-        body = body[1:]
-    return {**METRICS, "page_md": "\n".join(body) + "\n"}
+    return page_written_by(_write, METRICS, workdir)
 
 
-def page(metrics: dict) -> str:
-    return metrics["page_md"]
+page = written_page
