@@ -337,22 +337,28 @@ class QuenchRun:
             return float(np.sum(weight * tri[1].mean(axis=0)) / np.sum(weight))
         return centroid_z(vertices_m) - centroid_z(self.before_mesh.p)
 
+    def _deformed_vertices(self) -> tuple[np.ndarray, float]:
+        """The mesh vertices moved by the solver's displacement and their rigid axial shift (stress solved)."""
+        p = self.section.mesh.p + self.mech.vertex_displacement().T
+        return p, self._rigid_axial_shift_m(p)
+
     def final_vertices(self) -> np.ndarray:
         """Mesh vertices (2, nv) of the part after the run, without rigid axial translation: the deformed
         section when the stress is solved; otherwise the "before" section (no distortion computed)."""
         if self.mech is None:
             return self.before_mesh.p.copy()
-        p = self.section.mesh.p + self.mech.vertex_displacement().T
-        p[1] -= self._rigid_axial_shift_m(p)
+        p, shift = self._deformed_vertices()
+        p[1] -= shift
         return p
 
     def final_section(self) -> FinalSection:
-        p = self.final_vertices()
         if self.mech is None:
-            outline = mechanics.section_outline(self.before_mesh)
-        else:
-            outline = mechanics.section_outline(self.section.mesh, self.mech.displacement_m)
-            outline[:, 1] -= self._rigid_axial_shift_m(self.section.mesh.p + self.mech.vertex_displacement().T)
+            return FinalSection.of(self.before_mesh.p.copy(), self.section.mesh.t,
+                                   mechanics.section_outline(self.before_mesh))
+        p, shift = self._deformed_vertices()
+        p[1] -= shift
+        outline = mechanics.section_outline(self.section.mesh, self.mech.displacement_m)
+        outline[:, 1] -= shift
         return FinalSection.of(p, self.section.mesh.t, outline)
 
     def _final_frame(self, vtk: Any) -> Path:
