@@ -283,7 +283,7 @@ class QuenchRun:
         every_s = 60.0 * case.output.checkpoint_minutes
         last_checkpoint = time.perf_counter()
         plan = stages(case)
-        estimate = CoolingProgress(self.T_aust, case.air.until_max_C)
+        estimate = CoolingProgress(self.T_aust, case.air.until_max_C, case.air.temperature_C, ctl.dt_max_s)
         for index in range(position["stage"], len(plan)):
             stage = plan[index]
             self.bar.phase(f"{stage.name}: boundary HTC")
@@ -337,7 +337,10 @@ class QuenchRun:
                     self._last_frame_T = self.thermal.T.copy()
                 grow = ctl.growth if limit < 1e-12 else min(ctl.growth, 0.9 / limit)
                 position["dt_s"] = float(np.clip(dt * grow, ctl.dt_min_s, ctl.dt_max_s))
-                self.bar.update(self.thermal.time_s, estimate.fraction(self.thermal.T))
+                clock_left = t_end - self.thermal.time_s + sum(st.duration_s for st in plan[index + 1:])
+                self.bar.update(self.thermal.time_s, estimate.fraction(self.thermal.T), counts["steps"],
+                                estimate.steps_left(counts["steps"], self.thermal.time_s, self.thermal.T,
+                                                    position["dt_s"], clock_left, math.isfinite(stage.until_max_C)))
             position["stage"], position["stage_end_s"] = index + 1, None
             self._checkpoint(vtk)
             last_checkpoint = time.perf_counter()

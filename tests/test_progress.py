@@ -24,8 +24,8 @@ def recorded_run(case, out):
     run = QuenchRun(case, out, progress=False)
     run.bar = RunProgress(case.name, 1.0, enabled=False, clock=time.process_time)
     run.run()
-    history = np.array(run.bar.time_left.history)     # (elapsed, fraction, estimate) per step
-    return history[:, 0], history[:, 2], history[-1, 0]
+    history = np.array(run.bar.time_left.history)     # (elapsed, fraction, raw estimate, estimate) per step
+    return history[:, 0], history[:, 3], history[-1, 0]
 
 
 def test_one_bar_names_its_phases_and_ends_full_without_warning(tmp_path, caplog):
@@ -40,20 +40,27 @@ def test_one_bar_names_its_phases_and_ends_full_without_warning(tmp_path, caplog
     assert {"quench", "air", "quench: boundary HTC", "air: boundary HTC"} <= set(named)
 
 
-def test_the_time_left_never_rises(tmp_path):
+def within_factor_2(elapsed, estimate, end):
+    """The share of the steps between 10 % and 90 % of the run whose estimate is within a factor 2 of the real
+    time left, and the range of estimate / real."""
+    window = (elapsed > 0.1 * end) & (elapsed < 0.9 * end)
+    ratio = estimate[window] / (end - elapsed[window])
+    return float(np.mean((ratio >= 0.5) & (ratio <= 2.0))), ratio.min(), ratio.max()
+
+
+def test_the_time_left_never_rises_and_is_within_a_factor_2_on_the_small_ring(tmp_path):
     elapsed, estimate, end = recorded_run(case_from_dict(plastic_ring()), tmp_path)
     assert len(estimate) > 20
     assert np.all(np.diff(estimate) <= 0.0)
-    assert estimate[0] > 0.0 and elapsed[0] < end
+    share, low, high = within_factor_2(elapsed, estimate, end)
+    assert share >= 0.8, (share, low, high)                   # measured 0.96 (0.47..0.94)
 
 
 @pytest.mark.slow
 def test_the_time_left_on_ring_A_is_within_a_factor_2_for_most_of_the_run(tmp_path):
-    """Ring A condition 1 (measured 78 % of the steps between 10 % and 90 % of the run within a factor 2 of the
-    real time left, never off by more than 5x; see quenchsim.progress.CoolingProgress for where it fails)."""
+    """Ring A condition 1 (measured: 80 % of the steps between 10 % and 90 % of the run within a factor 2 of the
+    real time left, 0.63..4.7x; see quenchsim.progress.CoolingProgress for where it fails)."""
     elapsed, estimate, end = recorded_run(load_case(ROOT / "cases" / "crb_outer_ring.toml", "1"), tmp_path)
     assert np.all(np.diff(estimate) <= 0.0)
-    window = (elapsed > 0.1 * end) & (elapsed < 0.9 * end)
-    ratio = estimate[window] / (end - elapsed[window])
-    assert np.mean((ratio >= 0.5) & (ratio <= 2.0)) >= 0.7
-    assert ratio.max() < 6.0 and ratio.min() > 0.5
+    share, low, high = within_factor_2(elapsed, estimate, end)
+    assert share >= 0.7 and 0.5 < low and high < 6.0, (share, low, high)
