@@ -8,9 +8,9 @@ import pytest
 from quenchsim.cli import main
 from quenchsim.errors import InputError
 from quenchsim.fitting.probe import ProbeMesh, ProbeModel
+from quenchsim.bath.quenchant import library, load_probe_quenchant
 from quenchsim.fitting.quenchant import (TIME_TEMPERATURE, ProbeData, check_probe_data, cooling_figures, fit_probe_curve,
-                                         library, load_probe_quenchant, quenchant_document, read_probe_csv,
-                                         write_quenchant)
+                                         quenchant_document, read_probe_csv, write_quenchant)
 from quenchsim.materials import load_data_file
 
 # a known h(T_s) of oil-like shape (film plateau, boiling peak at 550 C, convection), nodes every 100 K

@@ -31,6 +31,7 @@ boiling curve above by the measured one, on which the local flow acts (:func:`st
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -208,7 +209,10 @@ def still_curve_heat_flux(curve: ProbeQuenchant, liquid: OilProperties, flow: Lo
     T_peak0, T_L0 = still_curve_features(curve)
     dT_oil = np.maximum(T_s - T_oil, 1e-9)
     q_still = curve.h(T_s) * dT_oil                                            # (m,)
-    q_of = lambda T: np.interp(T, T_s, q_still)                                # noqa: E731
+
+    def q_of(T: Any) -> np.ndarray:
+        return np.interp(T, T_s, q_still)
+
     T_L = leidenfrost_temperature(liquid, flow.velocity_m_s) - liquid.leidenfrost_still_C + T_L0   # (n,)
     shift = (T_L - T_L0)[:, None]
     q_peak = float(curve.h(T_peak0)) * max(T_peak0 - T_oil, 1e-9)

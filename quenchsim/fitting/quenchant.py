@@ -34,10 +34,10 @@ from typing import Any
 import numpy as np
 from scipy.optimize import least_squares
 
-from quenchsim.bath.quenchant import STILL_BATH_KIND, ProbeQuenchant, library, load_probe_quenchant
+from quenchsim.bath.quenchant import STILL_BATH_KIND
 from quenchsim.errors import InputError, require
 from quenchsim.fitting.probe import ProbeCurve, ProbeModel, step_schedule
-from quenchsim.materials import load_data_file, materials_dir
+from quenchsim.materials import load_data_file
 
 TIME_TEMPERATURE = "time_temperature"
 RATE_TEMPERATURE = "rate_temperature"

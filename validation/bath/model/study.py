@@ -120,6 +120,7 @@ def centre_cooling(case_path: Path, condition: str, out_dir: Path, quench_time_s
         run_ok = False
     T0 = case.process.austenitising_temperature_C
     t500 = time_to_temperature(np.asarray(t), np.asarray(T), 500.0)
+    t500 = float('nan') if t500 is None else t500  # a run stopped before 500 C: no time (as before)
     return {"condition": condition, "t_to_500C_s": t500, "rate_to_500C_C_s": (T0 - 500.0) / t500,
             "wall_s": time.perf_counter() - t0, "run_completed": run_ok,
             "mesh_size_mm": case.mesh.size_mm, "surface_size_mm": case.mesh.surface_size_mm}
