@@ -477,7 +477,6 @@ def default_shape(name: str = SHORTCUT_SHAPE_OIL) -> CurveShape:
 # --- the quenchant file: a still-bath curve h(T_surface) ----------------------------------------------------
 
 
-
 def quenchant_document(fit: ProbeFit, *, name: str, source: str, tag: str, agitation_m_s: float = 0.0,
                        description: str = "", data_file: str = "") -> dict[str, Any]:
     """The TOML document of a fitted quenchant (see materials/quenchants/README.md for the keys)."""
