@@ -32,13 +32,13 @@ from quenchsim.geometry import BoundaryPoints, SectionMesh, boundary_points, mes
 from quenchsim.geometry.profile import MM, Profile
 from quenchsim.io.checkpoint import FORMAT_VERSION as CHECKPOINT_FORMAT
 from quenchsim.io.checkpoint import read_checkpoint, write_checkpoint
-from quenchsim.materials import load_material, thermal_properties
+from quenchsim.materials import load_material, thermal_properties, transforms
 from quenchsim.progress import CoolingProgress, RunProgress
 from quenchsim.results import RunWriter, files
 from quenchsim.results.postprocess import NodalProjection, phase_statistics
 from quenchsim.results.summary import (FinalSection, hardness_summary, probe_times, residual_stress_summary,
                                        residual_traverse)
-from quenchsim.thermal import AxisymmetricP2, SurfaceTemperatureHTC, ThermalSolver, parse_htc_table
+from quenchsim.thermal import AxisymmetricP2, ImmersionHTC, SurfaceTemperatureHTC, ThermalSolver, parse_htc_table
 
 log = logging.getLogger("quenchsim")
 
@@ -115,20 +115,57 @@ class Stage:
 
 def stages(case: Case) -> list[Stage]:
     """The stages of a run in order (the progress bar and the checkpoints count them)."""
-    return [Stage("quench", case.quench.time_s), Stage("air", case.air.time_s, case.air.until_max_C)]
+    return [Stage("transfer", case.transfer.time_s), Stage("quench", case.quench.time_s),
+            Stage("air", case.air.time_s, case.air.until_max_C)]
 
 
 def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
-    """The HTC of the quench or air stage as ``htc(T_surface, t)`` with ``ambient_C`` per point."""
+    """The HTC of the transfer, quench or air stage as ``htc(T_surface, t)`` with ``ambient_C`` per point.
+
+    The quench stage starts when the transfer ends (``transfer.time_s``); with ``quench.immersion_speed_mm_s`` the
+    part enters the oil bottom face first and the points above the oil level keep the transfer air's HTC."""
     from quenchsim import bath
 
+    if stage == "transfer":
+        return SurfaceTemperatureHTC(bath.air_htc(points, case.transfer.temperature_C, case.transfer.emissivity))
     if stage == "quench":
         if case.quench.htc_model == "table":
-            return parse_htc_table(dict(case.quench.htc_table), points.segment, "quench.htc_table")
-        return SurfaceTemperatureHTC(bath.boundary_htc(case.quench.bath, points))
+            oil = parse_htc_table(dict(case.quench.htc_table), points.segment, "quench.htc_table")
+        else:
+            oil = SurfaceTemperatureHTC(bath.boundary_htc(case.quench.bath, points))
+        if case.quench.immersion_speed_mm_s is None:
+            return oil
+        return ImmersionHTC(oil, stage_htc(case, "transfer", points), points.z_m, points.extent.z_min_m,
+                            case.quench.immersion_speed_mm_s * MM, case.transfer.time_s)
     if case.air.htc_model == "table":
         return parse_htc_table(dict(case.air.htc_table), points.segment, "air.htc_table")
     return SurfaceTemperatureHTC(bath.air_htc(points, case.air.temperature_C, case.air.emissivity))
+
+
+@dataclass
+class _UntransformedState:
+    fractions: dict[str, np.ndarray]
+
+
+class _Untransformed:
+    """Phase model of a material that does not transform (``transformations = "none"``): the phase it was heated to
+    stays, no latent heat."""
+
+    @staticmethod
+    def initial_state(shape: tuple[int, ...]) -> _UntransformedState:
+        return _UntransformedState({"austenite": np.ones(shape)})
+
+    def advance(self, state: Any, T_old_C: np.ndarray, T_new_C: np.ndarray, dt_s: float) -> Any:
+        return state
+
+    def fractions(self, state: Any) -> dict[str, np.ndarray]:
+        return state.fractions
+
+    def checkpoint_state(self, state: Any) -> dict[str, Any]:
+        return {"fractions": state.fractions}
+
+    def restore_state(self, arrays: dict[str, Any]) -> Any:
+        return _UntransformedState({p: np.array(v) for p, v in arrays["fractions"].items()})
 
 
 class _Kinetics:
@@ -180,10 +217,14 @@ class QuenchRun:
         cooled = np.concatenate([f for n, f in self.section.boundaries.items() if n != "axis"])
         self.fe = AxisymmetricP2(self.section.mesh, cooled, intorder=INTORDER)
         self.points = cooled_surface_points(self.fe, self.section)
-        self.kin = metallurgy.load_kinetics(self.material, self.T_aust)
-        self.phase_model = _Kinetics(self.kin)
+        if transforms(self.material):
+            self.kin = metallurgy.load_kinetics(self.material, self.T_aust)
+            self.phase_model, start_state = _Kinetics(self.kin), metallurgy.initial_state(self.fe.r_qp.shape, self.kin)
+        else:
+            self.kin, self.phase_model = None, _Untransformed()
+            start_state = _Untransformed.initial_state(self.fe.r_qp.shape)
         self.thermal = ThermalSolver(self.fe, thermal_properties(self.material), self.T_aust, self.phase_model,
-                                     metallurgy.initial_state(self.fe.r_qp.shape, self.kin))
+                                     start_state)
         self.projection = NodalProjection(self.section.mesh, INTORDER)
         fixed = case.mechanics.fixed_point_mm
         fixed_m = None if fixed is None else (fixed[0] * MM * self.case_to_hot, fixed[1] * MM * self.case_to_hot)
@@ -203,11 +244,12 @@ class QuenchRun:
         nv = self.section.mesh.p.shape[1]
         state = self.thermal.phase_state
         data = {"temperature_C": self.thermal.T[:nv].copy()}
-        for phase, X in state.fractions.items():
-            data[phase] = self.projection(X)
-        hv = metallurgy.hardness_HV(state, self.kin)
-        data["hardness_HV"] = self.projection(hv)
-        data["hardness_HRC"] = metallurgy.hv_to_hrc(data["hardness_HV"])
+        if self.kin is not None:  # a non-transforming material has no phases or hardness to show
+            for phase, X in state.fractions.items():
+                data[phase] = self.projection(X)
+            hv = metallurgy.hardness_HV(state, self.kin)
+            data["hardness_HV"] = self.projection(hv)
+            data["hardness_HRC"] = metallurgy.hv_to_hrc(data["hardness_HV"])
         if self.mech is not None:
             data.update(self.mech.nodal_fields())
         return data
@@ -286,6 +328,9 @@ class QuenchRun:
         estimate = CoolingProgress(self.T_aust, case.air.until_max_C, case.air.temperature_C, ctl.dt_max_s)
         for index in range(position["stage"], len(plan)):
             stage = plan[index]
+            if stage.duration_s <= 0.0:     # a stage the case leaves out (no transfer, no air cooling)
+                position["stage"] = index + 1
+                continue
             self.bar.phase(f"{stage.name}: boundary HTC")
             with self.timer("bath_htc_s"):
                 htc = stage_htc(case, stage.name, self.points)
@@ -488,14 +533,33 @@ class QuenchRun:
                 "distortion_budget_mm": budget,
                 "residual_stress_MPa": residual_stress_summary(hoop, axial)}
 
+    def handling_summary(self) -> dict[str, Any]:
+        """How the part was quenched: transfer, immersion, and for the bath model the quenchant and its
+        liquid-property file, bath temperature, agitation and the part's support."""
+        case = self.case
+        out: dict[str, Any] = {"transfer_time_s": case.transfer.time_s, "htc_model": case.quench.htc_model,
+                               "immersion_speed_mm_s": case.quench.immersion_speed_mm_s}
+        bath = case.quench.bath
+        if bath is not None:
+            out.update(quenchant=case.get("quench.bath.quenchant"), liquid_properties=bath.liquid.name,
+                       oil_temperature_C=bath.oil_temperature_C, agitation=bath.agitation,
+                       agitation_m_s=bath.agitation_m_s, support=bath.support,
+                       support_open_fraction=bath.turntable_open_fraction)
+        return out
+
     def summary(self, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wall0: float) -> dict[str, Any]:
         fields = self.nodal_fields()
         out: dict[str, Any] = {"case": self.case.name, "condition": self.case.condition}
         out["probes"] = probe_times(time_s, probe_T)
+        out["quench"] = self.handling_summary()
         final = self.final_section()
-        out["hardness"], traverse = hardness_summary(self.profile, self.projection.p1, final, fields["hardness_HRC"])
-        self.writer.hardness_traverse(traverse["bore"][0], traverse["bore"][1], traverse["od"][1])
-        out["phases_final"] = phase_statistics(self.thermal.fractions(), self.fe.r_dx)
+        if self.kin is None:
+            out["notes"] = ['the material does not transform (transformations = "none"): no phases, no hardness']
+        else:
+            out["hardness"], traverse = hardness_summary(self.profile, self.projection.p1, final,
+                                                         fields["hardness_HRC"])
+            self.writer.hardness_traverse(traverse["bore"][0], traverse["bore"][1], traverse["od"][1])
+            out["phases_final"] = phase_statistics(self.thermal.fractions(), self.fe.r_dx)
         if self.mech is not None:
             out.update(self.mechanics_summary(final))
         out["energy"] = {"heat_extracted_J": self.counts["heat_out_J"], "latent_released_J": self.counts["latent_J"]}

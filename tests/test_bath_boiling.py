@@ -55,12 +55,12 @@ def test_regime_structure():
     htc = boundary_htc(cfg, PROBE)
     i = od_point(htc)
     T, h = htc.T_grid_C, htc.h_W_m2K[i]
-    Tb = cfg.quenchant.boiling_point_C
+    Tb = cfg.liquid.boiling_point_C
     nucleate = (T > Tb) & (T <= htc.peak_C[i])
     assert np.all(np.diff(h[nucleate]) > 0)                   # nucleate boiling: h rises to the peak
     transition = (T > htc.peak_C[i]) & (T < htc.leidenfrost_C[i])
     assert np.all(np.diff(h[transition]) < 0)                 # transition boiling: h falls toward the film level
-    assert htc.leidenfrost_C[i] - htc.peak_C[i] >= cfg.quenchant.transition_min_width_K - 1e-9
+    assert htc.leidenfrost_C[i] - htc.peak_C[i] >= cfg.liquid.transition_min_width_K - 1e-9
     assert np.all(h[T > htc.leidenfrost_C[i] + 5] < 0.2 * h.max())  # vapour blanket: far below the peak
 
 

@@ -139,7 +139,7 @@ def test_negative_numbers_in_case_fields():
 
 @pytest.mark.parametrize("override, message", [
     ({"geometry.width_mm": float("inf")}, "geometry.width_mm = inf: must be a finite number"),
-    ({"geometry.inner_diameter_mm": 0.0}, "geometry.inner_diameter_mm = 0.0: must be > 0"),
+    ({"geometry.inner_diameter_mm": -1.0}, "geometry.inner_diameter_mm = -1.0: must be >= 0"),  # 0: a solid section
     ({"quench.bath.od_jet_speed_mm_s": 1e9}, "quench.bath.od_jet_speed_mm_s = 1000000000.0: must be <= 50000"),
     ({"quench.bath.rotation_rpm": 1e5}, "quench.bath.rotation_rpm = 100000.0: must be <= 600"),
     ({"quench.bath.oil_temperature_C": 900.0}, "quench.bath.oil_temperature_C = 900.0: must be below the boiling"),

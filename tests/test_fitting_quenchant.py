@@ -8,9 +8,9 @@ import pytest
 from quenchsim.cli import main
 from quenchsim.errors import InputError
 from quenchsim.fitting.probe import ProbeMesh, ProbeModel
+from quenchsim.bath.quenchant import library, load_probe_quenchant
 from quenchsim.fitting.quenchant import (TIME_TEMPERATURE, ProbeData, check_probe_data, cooling_figures, fit_probe_curve,
-                                         library, load_probe_quenchant, quenchant_document, read_probe_csv,
-                                         write_quenchant)
+                                         quenchant_document, read_probe_csv, write_quenchant)
 from quenchsim.materials import load_data_file
 
 # a known h(T_s) of oil-like shape (film plateau, boiling peak at 550 C, convection), nodes every 100 K
@@ -31,10 +31,12 @@ def synthetic_curve(T_C: np.ndarray, h: np.ndarray, t_end_s: float, seed: int = 
 
 def test_inverse_fit_recovers_a_known_curve_within_5_percent_over_300_800C():
     """Verification: h(T_s) of known shape drives a finer probe model; the single coarse level of the fitter (100 K
-    nodes, 2 K steps) recovers it from the noisy centre curve (25 s: down to 230 C)."""
-    data = synthetic_curve(KNOWN_T_C, KNOWN_H, 25.0)
-    assert data.temperature_C.min() < 250.0
+    nodes, 2 K steps) recovers it from the noisy centre curve. 14 s of curve (centre down to 330 C) take the
+    surface below 235 C, so every node of 300-800 C is identified (25 s of curve gave the same errors, 3.4 % at
+    most, in three times the time: 23 s vs 7 s)."""
+    data = synthetic_curve(KNOWN_T_C, KNOWN_H, 14.0)
     fit = fit_probe_curve(data, sigma=NOISE_K, levels=((100.0, 2.0),))
+    assert fit.identified_C[0] < 250.0  # the surface went below every node checked
     inside = (fit.T_C >= 300.0) & (fit.T_C <= 800.0)
     error = fit.h_W_m2K[inside] / np.interp(fit.T_C[inside], KNOWN_T_C, KNOWN_H) - 1.0
     assert np.max(np.abs(error)) < 0.05, error

@@ -14,12 +14,19 @@ and the diagnostics length_m, leidenfrost_C, peak_C.
 
 The ``[quench.bath]`` table (units as suffixes; condition overrides merged in before parsing)::
 
-    quenchant = "reference_quench_oil"   # materials/quenchants/<name>.toml, a liquid (oil) file
-    oil_temperature_C = 60.0             # bulk oil; must lie below the quenchant's boiling point
+    quenchant = "reference_quench_oil"   # materials/quenchants/<name>.toml: a liquid (boiling-curve) oil, or a
+                                         # still-bath curve from the ISO 9950 probe (a library oil)
+    liquid_properties = "reference_quench_oil"  # only with a still-bath curve: the liquid file whose properties
+                                         # and vapour-film agitation law the flow uses (default shown)
+    oil_temperature_C = 60.0             # bulk oil; must lie below the (liquid's) boiling point
+    agitation = "flow"                   # "still": no nozzles, rotation or flow (those keys are then errors)
+    agitation_m_s = 0.0                  # bulk oil speed past every face (tank agitator), 0-10 m/s, default 0
+    support = "turntable"                # "turntable" | "fixture" (bottom face partly covered) | "hanging"
+    support_open_fraction = 0.5          # share of the bottom face open to the oil on a turntable/fixture (0-1);
+                                         # older name turntable_open_fraction
     rotation_rpm = 11.0                  # turntable speed (>= 0), default 0
     id_jet_speed_mm_s = 1000.0           # exit speed of every "id" row without its own jet_speed_mm_s (>= 0)
     od_jet_speed_mm_s = 5340.0           # same for "od" rows
-    turntable_open_fraction = 0.5        # share of the bottom face open to the oil (0-1), default 0.5
     oil_swirl_fraction = 0.0             # share of the part's rotation the nearby oil follows (0-1), default 0
     corner_carryover = 0.3               # share of a wall jet carried round a convex edge onto a face
                                          # turned ~90 deg from the jet (0-1), default 0.3

@@ -6,10 +6,26 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from quenchsim.bath.quenchant import OilProperties, load_oil
+from quenchsim.bath.quenchant import (STILL_BATH_KIND, OilProperties, ProbeQuenchant, load_oil,
+                                      load_probe_quenchant)
 from quenchsim.errors import InputError
+from quenchsim.materials import load_data_file
 
 SIDES = ("id", "od")
+AGITATION = ("flow", "still")
+"""``agitation = "still"``: no nozzles, no rotation, no bulk flow (every flow key is then an error); ``"flow"``
+(default): the nozzles, rotation and bulk flow the table gives (none given is also a still bath)."""
+FLOW_KEYS = ("rotation_rpm", "nozzles", "id_jet_speed_mm_s", "od_jet_speed_mm_s", "oil_swirl_fraction",
+             "corner_carryover", "id_crossflow_up_m_s", "od_crossflow_up_m_s", "agitation_m_s")
+SUPPORTS = ("turntable", "fixture", "hanging")
+"""How the part is held: on a turntable or fixture (its bottom face is covered except ``support_open_fraction``;
+that covered share is treated as adiabatic), or hanging (every face open to the oil)."""
+MAX_AGITATION_M_S = 10.0
+"""Largest bulk oil speed accepted: tank agitators move oil past the work at up to ~1-2 m/s (propeller-agitated
+tanks; the reference conditions' jets reach 10.7 m/s at the exit), beyond the flat-plate correlations' use here."""
+DEFAULT_LIQUID = "reference_quench_oil"
+"""Liquid properties (viscosity, density, ...) and agitation response of the vapour film used with a still-bath
+curve when ``liquid_properties`` is not given: the reference mineral oil (materials/SOURCES.md)."""
 MAX_JET_SPEED_MM_S = 50_000.0
 """Largest nozzle exit speed accepted (50 m/s): quench-tank agitation and spray nozzles run at up to a few
 m/s (the reference conditions: 0.4-10.7 m/s); far above, the free-jet and wall-jet correlations of
@@ -40,9 +56,17 @@ class NozzleRow:
 
 @dataclass(frozen=True)
 class BathConfig:
-    """A parsed bath: quenchant, oil temperature, nozzle rows, part rotation and modelling options."""
+    """A parsed bath: quenchant, oil temperature, nozzle rows, part rotation and modelling options.
 
-    quenchant: OilProperties
+    ``liquid`` is the liquid quenchant file the flow and convection use (the quenchant itself when it is a
+    ``kind = "liquid"`` file, else ``liquid_properties``); ``still_curve`` the probe-measured still-bath curve
+    h(T_s) when the quenchant is one (the bath then acts on that curve, quenchsim.bath.htc)."""
+
+    liquid: OilProperties
+    still_curve: ProbeQuenchant | None
+    agitation: str
+    agitation_m_s: float
+    support: str
     oil_temperature_C: float
     rotation_rpm: float
     rows: tuple[NozzleRow, ...]
@@ -101,7 +125,36 @@ def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
     name = spec.get("quenchant")
     if not isinstance(name, str) or not name:
         raise InputError(f"{field}.quenchant", name, "is required: the name of a materials/quenchants/*.toml file")
-    oil = load_oil(name, f"{field}.quenchant")
+    still_curve = None
+    if load_data_file(name, "quenchants", f"{field}.quenchant").get("kind") == STILL_BATH_KIND:
+        still_curve = load_probe_quenchant(name, f"{field}.quenchant")
+        liquid_name = spec.get("liquid_properties", DEFAULT_LIQUID)
+        if not isinstance(liquid_name, str) or not liquid_name:
+            raise InputError(f"{field}.liquid_properties", liquid_name, "must be the name of a liquid quenchant file")
+        oil = load_oil(liquid_name, f"{field}.liquid_properties")
+    else:
+        if "liquid_properties" in spec:
+            raise InputError(f"{field}.liquid_properties", spec["liquid_properties"],
+                             f"only applies to a still-bath curve; {name} carries its own liquid properties")
+        oil = load_oil(name, f"{field}.quenchant")
+    agitation = spec.get("agitation", "flow")
+    if agitation not in AGITATION:
+        raise InputError(f"{field}.agitation", agitation, f"must be one of {', '.join(AGITATION)}")
+    if agitation == "still":
+        for key in FLOW_KEYS:
+            if key in spec:
+                raise InputError(f"{field}.{key}", spec[key], "not allowed in a still bath (agitation = \"still\")")
+    support = spec.get("support", "turntable")
+    if support not in SUPPORTS:
+        raise InputError(f"{field}.support", support, f"must be one of {', '.join(SUPPORTS)}")
+    if support == "hanging" and ("support_open_fraction" in spec or "turntable_open_fraction" in spec):
+        raise InputError(f"{field}.support_open_fraction", spec.get("support_open_fraction",
+                         spec.get("turntable_open_fraction")), "does not apply to a hanging part (every face is open)")
+    if "support_open_fraction" in spec and "turntable_open_fraction" in spec:
+        raise InputError(f"{field}.turntable_open_fraction", spec["turntable_open_fraction"],
+                         "give support_open_fraction or its older name turntable_open_fraction, not both")
+    open_key = "turntable_open_fraction" if "turntable_open_fraction" in spec else "support_open_fraction"
+    open_fraction = 1.0 if support == "hanging" else _number(spec, open_key, field, 0.5, lo=0.0, hi=1.0)
     T_oil = _number(spec, "oil_temperature_C", field, lo=-20.0)
     if T_oil >= oil.boiling_point_C:
         raise InputError(f"{field}.oil_temperature_C", T_oil,
@@ -117,11 +170,13 @@ def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
     if T_max <= oil.boiling_point_C:
         raise InputError(f"{field}.T_max_C", T_max, f"must exceed the boiling point {oil.boiling_point_C:g} C")
     return BathConfig(
-        quenchant=oil, oil_temperature_C=T_oil,
+        liquid=oil, still_curve=still_curve, agitation=agitation,
+        agitation_m_s=_number(spec, "agitation_m_s", field, 0.0, lo=0.0, hi=MAX_AGITATION_M_S),
+        support=support, oil_temperature_C=T_oil,
         rotation_rpm=_number(spec, "rotation_rpm", field, 0.0, lo=0.0, hi=MAX_ROTATION_RPM),
         rows=rows,
         oil_swirl_fraction=_number(spec, "oil_swirl_fraction", field, 0.0, lo=0.0, hi=1.0),
-        turntable_open_fraction=_number(spec, "turntable_open_fraction", field, 0.5, lo=0.0, hi=1.0),
+        turntable_open_fraction=open_fraction,
         corner_carryover=_number(spec, "corner_carryover", field, 0.3, lo=0.0, hi=1.0),
         crossflow_up_m_s={side: _number(spec, f"{side}_crossflow_up_m_s", field, 0.0, lo=-5.0, hi=5.0)
                           for side in SIDES},

@@ -31,9 +31,13 @@ Rotation: relative speed U_rot = omega r (1 - oil_swirl_fraction) along the surf
 circumferential pitch of the facing nozzle row (each jet crossing restarts the boundary layer), or
 the full circumference where no row faces the point.
 
-The bottom face sits on the turntable: its points (outward normal down, at z_min) exchange heat only
-on the open fraction ``turntable_open_fraction`` of their area (the rest is covered by the table and
-treated as adiabatic).
+Bulk agitation (``agitation_m_s``, a tank agitator's oil speed past the work): one more source, the same speed at
+every point, run length the section height on vertical faces and half the radial width on horizontal ones (the
+flow sweeps the whole face; the lengths of the natural-convection correlations).
+
+The part's support (``support``): on a turntable or fixture the bottom face's points (outward normal down, at z_min)
+exchange heat only on the open fraction ``turntable_open_fraction`` of their area (the rest is covered and treated
+as adiabatic); a hanging part is open on every face (fraction 1).
 """
 
 from __future__ import annotations
@@ -100,13 +104,13 @@ def _row_flow(cfg: BathConfig, row: NozzleRow, pts: BoundaryPoints) -> tuple[np.
     r_imp = pts.r_m[face_idx[np.argmin(np.abs(pts.z_m[face_idx] - z_imp))]]
     U_a = float(jet_centreline_velocity(row.jet_speed_m_s, row.diameter_m, travel))
     b = float(jet_half_width(row.diameter_m, travel))
-    momentum = row.count * cfg.quenchant.density_kg_m3 * row.jet_speed_m_s**2 * np.pi * row.diameter_m**2 / 4.0
+    momentum = row.count * cfg.liquid.density_kg_m3 * row.jet_speed_m_s**2 * np.pi * row.diameter_m**2 / 4.0
     J_per_width = momentum / (2.0 * np.pi * r_imp)
     sin_inc = np.sin(row.inclination_rad)
     share = np.where(pts.z_m < z_imp, 0.5 * (1.0 + sin_inc), 0.5 * (1.0 - sin_inc))
     s = np.hypot(pts.r_m - r_imp, pts.z_m - z_imp)
     x = s + b
-    U = np.minimum(U_a, plane_wall_jet_velocity(share * J_per_width, cfg.quenchant.density_kg_m3, x))
+    U = np.minimum(U_a, plane_wall_jet_velocity(share * J_per_width, cfg.liquid.density_kg_m3, x))
     factor = np.where(facing > AWAY_COSINE, np.maximum(facing, cfg.corner_carryover), 0.0)
     return U * factor, x, factor
 
@@ -129,6 +133,10 @@ def local_flow(cfg: BathConfig, pts: BoundaryPoints) -> LocalFlow:
     vertical = np.abs(pts.normal_z) < VERTICAL_NZ
     height = ext.z_max_m - ext.z_min_m
     half_width = 0.5 * (ext.r_max_m - ext.r_min_m)
+    if cfg.agitation_m_s > 0.0:
+        speeds.append(np.full(len(pts), cfg.agitation_m_s))
+        lengths.append(np.where(vertical, height, half_width))
+        names.append("agitation")
     orientation = np.where(vertical, 0, np.sign(pts.normal_z)).astype(int)
     tol = 1e-6 + 1e-3 * height
     on_table = (pts.normal_z < -VERTICAL_NZ) & (pts.z_m - ext.z_min_m < tol)

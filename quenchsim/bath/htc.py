@@ -23,11 +23,15 @@ Regimes (T_b boiling point, T_L Leidenfrost temperature, T_oil bath temperature)
   subcooled oil.
 * Agitation: T_L = T_L0 + dT_L U/(U + U_L) with U the local speed -- faster oil shortens the vapour
   stage and strong flow removes it; higher U also raises h_c, the peak flux and the film flux.
+
+A still-bath curve (a library oil measured on the ISO 9950 probe, ``kind = "still_bath_curve"``) replaces the
+boiling curve above by the measured one, on which the local flow acts (:func:`still_curve_heat_flux`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -37,7 +41,7 @@ from quenchsim.bath.correlations import (GRAVITY, bromley_film_htc, churchill_us
                                          radiation_htc, rohsenow_heat_flux, vertical_plate_natural_nusselt,
                                          zuber_critical_heat_flux)
 from quenchsim.bath.flow import LocalFlow, VERTICAL_NZ, local_flow
-from quenchsim.bath.quenchant import GasProperties, OilProperties, load_gas
+from quenchsim.bath.quenchant import GasProperties, OilProperties, ProbeQuenchant, load_gas
 from quenchsim.errors import InputError
 from quenchsim.geometry.boundary import BoundaryPoints
 
@@ -167,12 +171,75 @@ def _interp_rows(x: np.ndarray, Y: np.ndarray, x_row: np.ndarray) -> np.ndarray:
     return Y[rows, i] * (1.0 - w) + Y[rows, i + 1] * w
 
 
+def still_curve_features(curve: ProbeQuenchant) -> tuple[float, float]:
+    """(T_peak0, T_L0) of a still-bath curve: the temperature of its highest h (the boiling peak) and, above it, the
+    temperature where h reaches its lowest value (the film level: the vapour film's collapse temperature)."""
+    i_peak = int(np.argmax(curve.h_W_m2K))
+    i_film = i_peak + int(np.argmin(curve.h_W_m2K[i_peak:]))
+    return float(curve.T_C[i_peak]), float(curve.T_C[i_film])
+
+
+def still_curve_heat_flux(curve: ProbeQuenchant, liquid: OilProperties, flow: LocalFlow, T_s: np.ndarray,
+                          T_oil: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Heat flux q (n, m) of a probe-measured still-bath curve h_0(T_s) under the local flow, with T_L (n,) and the
+    peak temperature (n,).
+
+    h_0 is used as a function of the surface temperature, with the driving difference T_s - T_oil of this bath (a
+    bath temperature other than the test's changes only that difference). With the local speed U (m/s):
+
+    * Vapour-film collapse: T_L = T_L0 + dT_L U/(U + U_L), the same law and constants (``leidenfrost_agitation_rise_K``,
+      ``leidenfrost_velocity_scale_m_s`` of the liquid file) as the boiling-curve model above -- agitation
+      shortens the vapour stage, strong agitation removes it (Totten/MacKenzie, "Understanding the cooling curve
+      test", Thermal Processing 2017; Grossmann H rises with agitation mainly through the boiling stages, ASM
+      Handbook Vol. 4). T_L0 and the peak T_p0 are read off h_0 (:func:`still_curve_features`).
+    * Boiling: below T_p0 the still flux q_0(T_s) = h_0 (T_s - T_oil); from T_p0 to T_p0 + (T_L - T_L0) the wall
+      stays in nucleate boiling at the still curve's peak flux q_0(T_p0) (the critical flux caps nucleate boiling,
+      as Zuber's q_max in the model above); the still transition follows, shifted up by T_L - T_L0 and interpolated
+      log-linearly so that q meets the film flux q_0(T_L) at T_L; above T_L the still film flux q_0(T_s). With
+      U = 0 this is q_0 exactly.
+    * Convection: the forced-convection increment h_c(U) - h_c(0) of the liquid (flat-plate and Churchill-Usagi
+      blend of :func:`convective_htc`, liquid properties of ``liquid``) is added to every regime on the
+      difference min(T_s, T_b) - T_oil (Rohsenow's superposition of forced convection and boiling; in film
+      boiling, convection from the film's liquid face at T_b) -- the still curve already holds the natural
+      convection of the probe test.
+
+    Not modelled: forced flow thickening the film flux itself (Bromley-LeRoy-Robbers), the bath temperature's
+    effect on the film stage, and the difference between the probe's and the part's natural convection.
+    """
+    T_peak0, T_L0 = still_curve_features(curve)
+    dT_oil = np.maximum(T_s - T_oil, 1e-9)
+    q_still = curve.h(T_s) * dT_oil                                            # (m,)
+
+    def q_of(T: Any) -> np.ndarray:
+        return np.interp(T, T_s, q_still)
+
+    T_L = leidenfrost_temperature(liquid, flow.velocity_m_s) - liquid.leidenfrost_still_C + T_L0   # (n,)
+    shift = (T_L - T_L0)[:, None]
+    q_peak = float(curve.h(T_peak0)) * max(T_peak0 - T_oil, 1e-9)
+    T = T_s[None, :]
+    span = np.log(max(float(q_of(T_L0)), 1e-9) / q_peak)
+    theta_still = np.log(np.maximum(q_of(np.clip(T - shift, T_peak0, T_L0)), 1e-9) / q_peak) \
+        / (span if span != 0.0 else 1.0)                                       # 0 at the peak, 1 at the film
+    q_film_L = curve.h(T_L)[:, None] * (T_L[:, None] - T_oil)
+    q_transition = q_peak * (q_film_L / q_peak) ** np.clip(theta_still, 0.0, 1.0)
+    q = np.where(T <= T_peak0, q_still[None, :],
+                 np.where(T <= T_peak0 + shift, q_peak, np.where(T < T_L[:, None], q_transition, q_still[None, :])))
+    still = LocalFlow(flow.source_names, np.zeros_like(flow.speed_m_s), flow.run_length_m, flow.natural_length_m,
+                      flow.orientation, flow.exposed_fraction)
+    h_c_increment = convective_htc(liquid, flow, T_s, T_oil) - convective_htc(liquid, still, T_s, T_oil)
+    q = q + h_c_increment * (np.minimum(T_s, liquid.boiling_point_C) - T_oil)[None, :]
+    return q, h_c_increment + curve.h(T_s)[None, :], T_L, np.full(T_L.shape, T_peak0)
+
+
 def boundary_htc(cfg: BathConfig, points: BoundaryPoints) -> BoundaryHTC:
     """HTC(T_surface) curves of every boundary point in the oil bath ``cfg`` (build once per stage)."""
     flow = local_flow(cfg, points)
     T_oil = cfg.oil_temperature_C
     T_grid = _grid(T_oil, cfg.T_max_C, cfg.T_step_K)
-    q, h_c, T_L, T_peak = oil_heat_flux(cfg.quenchant, flow, T_grid, T_oil)
+    if cfg.still_curve is None:
+        q, h_c, T_L, T_peak = oil_heat_flux(cfg.liquid, flow, T_grid, T_oil)
+    else:
+        q, h_c, T_L, T_peak = still_curve_heat_flux(cfg.still_curve, cfg.liquid, flow, T_grid, T_oil)
     dT = (T_grid - T_oil)[None, :]
     h = np.where(dT > 0.0, q / np.where(dT > 0.0, dT, 1.0), h_c) * flow.exposed_fraction[:, None]
     n = len(points)

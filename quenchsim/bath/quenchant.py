@@ -1,21 +1,24 @@
-"""Quenchant properties from ``materials/quenchants/NAME.toml`` (liquid oils and air).
+"""Quenchant properties from ``materials/quenchants/NAME.toml`` (liquid oils, still-bath curves and air).
 
 A liquid quenchant file has a ``[liquid]`` table (viscosity table fitted by Vogel, density, specific
 heat, conductivity, expansion coefficient) and a ``[boiling]`` table (boiling point, vapour data,
 boiling-curve constants). A gas file (``kind = "gas"``) has a ``[gas]`` table of properties at 1 atm
-tabulated against temperature. Every entry carries a ``source``; see the files themselves.
+tabulated against temperature. A still-bath curve (``kind = "still_bath_curve"``, written by ``quenchsim quenchant
+fit`` / ``from-datasheet``) holds h(T_surface) measured on the ISO 9950 probe in still oil with its test conditions.
+Every entry carries a ``source``; see the files themselves.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 from scipy.optimize import brentq
 
-from quenchsim.errors import InputError
-from quenchsim.materials import load_data_file
+from quenchsim.errors import InputError, require
+from quenchsim.materials import load_data_file, materials_dir
 
 KELVIN = 273.15
 GAS_CONSTANT = 8.314462618  # J/(mol K), CODATA 2018
@@ -172,3 +175,67 @@ def load_gas(name: str, field: str = "air") -> GasProperties:
                              prandtl_table=np.asarray(gas["prandtl"], float))
     except KeyError as exc:
         raise InputError(f"{name}.gas.{exc.args[0]}", None, "is required") from None
+
+
+# --- still-bath curves: h(T_surface) measured on the ISO 9950 probe (written by `quenchsim quenchant`) -----------
+
+STILL_BATH_KIND = "still_bath_curve"
+
+
+@dataclass(frozen=True)
+class ProbeQuenchant:
+    """A still-bath HTC curve h(T_surface) from a probe test, with the test conditions it holds for.
+
+    ``h(T_surface_C)`` interpolates linearly, constant beyond the ends. ``identified_C`` is the surface-
+    temperature range the probe data saw (outside it the curve is the regularised extrapolation)."""
+
+    name: str
+    T_C: np.ndarray
+    h_W_m2K: np.ndarray
+    bath_temperature_C: float
+    agitation_m_s: float
+    identified_C: tuple[float, float]
+    method: str
+    source: str
+
+    def h(self, T_surface_C: Any) -> np.ndarray:
+        return np.interp(np.asarray(T_surface_C, dtype=float), self.T_C, self.h_W_m2K)
+
+
+def load_probe_quenchant(path_or_name: str | Path, field: str = "quenchant") -> ProbeQuenchant:
+    """Load a still-bath curve ``materials/quenchants/NAME.toml`` (or a path ending in .toml) written by
+    ``quenchsim quenchant fit`` / ``from-datasheet``; errors name ``field``."""
+    name = str(path_or_name)
+    data = load_data_file(name, "quenchants", field)
+    stem = Path(name).stem
+    if data.get("kind") != STILL_BATH_KIND:
+        raise InputError(field, name, f"is a {data.get('kind', 'untyped')} quenchant file; a still-bath curve "
+                                      f"(kind = \"{STILL_BATH_KIND}\", from `quenchsim quenchant fit`) is needed")
+    htc, test = data.get("htc", {}), data.get("test", {})
+    T = np.asarray(htc.get("T_C", []), dtype=float)
+    h = np.asarray(htc.get("h_W_m2K", []), dtype=float)
+    require(T.size >= 2 and bool(np.all(np.diff(T) > 0)), f"{stem}.htc.T_C", htc.get("T_C"),
+            "needs >= 2 strictly increasing temperatures")
+    require(h.shape == T.shape and bool(np.all(h > 0)), f"{stem}.htc.h_W_m2K", htc.get("h_W_m2K"),
+            f"needs {T.size} positive values (one per T_C)")
+    for key in ("bath_temperature_C", "agitation_m_s"):
+        value = test.get(key)
+        require(isinstance(value, (int, float)) and not isinstance(value, bool), f"{stem}.test.{key}", value,
+                "is required (a number)")
+    lo, hi = htc.get("identified_T_C", [T[0], T[-1]])
+    return ProbeQuenchant(name=str(data.get("name", stem)), T_C=T, h_W_m2K=h,
+                          bath_temperature_C=float(test["bath_temperature_C"]),
+                          agitation_m_s=float(test["agitation_m_s"]), identified_C=(float(lo), float(hi)),
+                          method=str(htc.get("method", "")), source=str(data.get("source", "")))
+
+
+def library() -> list[str]:
+    """Names of the still-bath curves shipped in materials/quenchants/."""
+    import tomllib
+
+    names = []
+    for p in sorted((materials_dir() / "quenchants").glob("*.toml")):
+        with p.open("rb") as fh:
+            if tomllib.load(fh).get("kind") == STILL_BATH_KIND:
+                names.append(p.stem)
+    return names

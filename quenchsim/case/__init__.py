@@ -12,8 +12,8 @@ complete, commented example.
 """
 
 from quenchsim.case.model import (AirStage, Case, MechanicsOptions, MeshSpec, OutputSpec, Probe, ProcessSpec,
-                                  QuenchStage, TimeControl)
+                                  QuenchStage, TimeControl, TransferStage)
 from quenchsim.case.parse import DEFAULTS, case_from_dict, deep_merge, load_case, set_dotted
 
 __all__ = ["AirStage", "Case", "MechanicsOptions", "MeshSpec", "OutputSpec", "Probe", "ProcessSpec", "QuenchStage",
-           "TimeControl", "DEFAULTS", "case_from_dict", "deep_merge", "load_case", "set_dotted"]
+           "TimeControl", "TransferStage", "DEFAULTS", "case_from_dict", "deep_merge", "load_case", "set_dotted"]

@@ -7,9 +7,13 @@ Tables of a case file and the dataclass each becomes:
 ``[geometry]``     ``type = "rectangular" | "spherical_outer" | "profile"`` and its dimensions -> ``profile``
 ``[mesh]``         ``size_mm`` (core), ``surface_size_mm``, ``surface_layer_mm``      -> :class:`MeshSpec`
 ``[process]``      ``austenitising_temperature_C``, ``room_temperature_C``            -> :class:`ProcessSpec`
+``[transfer]``     the move from the furnace to the bath in still air: ``time_s`` (0 = none), ``temperature_C``,
+                   ``emissivity`` (natural convection + radiation, quenchsim.bath.air_htc)  -> :class:`TransferStage`
 ``[quench]``       ``time_s``, ``htc_model = "bath" | "table"``, ``[quench.bath]`` (bath model) or
                    ``[quench.htc_table]`` (``T_C``, ``h_W_m2K``, ``ambient_C``; optional per-segment
-                   ``[quench.htc_table.segments.NAME]``; ``time_s`` + ``h_W_m2K`` for HTC vs time)  -> :class:`QuenchStage`
+                   ``[quench.htc_table.segments.NAME]``; ``time_s`` + ``h_W_m2K`` for HTC vs time); optional
+                   ``immersion_speed_mm_s`` (the part enters bottom face first at this speed: below the oil
+                   level the quench HTC, above it the transfer air's)                  -> :class:`QuenchStage`
 ``[air]``          ``temperature_C``, ``until_max_C`` (stop when the hottest point is below) or ``time_s``,
                    ``htc_model = "natural" | "table"`` with ``emissivity`` or ``[air.htc_table]`` -> :class:`AirStage`
 ``[[probes]]``     ``name``, ``r_mm``, ``z_mm``                                       -> :class:`Probe`
@@ -54,6 +58,17 @@ class QuenchStage:
     htc_model: str
     bath: BathConfig | None
     htc_table: Mapping[str, Any] | None
+    immersion_speed_mm_s: float | None = None
+
+
+@dataclass(frozen=True)
+class TransferStage:
+    """The part's move from the furnace into the bath: ``time_s`` in still air at ``temperature_C`` (0 s: none),
+    natural convection plus radiation with ``emissivity``."""
+
+    time_s: float
+    temperature_C: float
+    emissivity: float
 
 
 @dataclass(frozen=True)
@@ -117,6 +132,7 @@ class Case:
     reference_state: str
     mesh: MeshSpec
     process: ProcessSpec
+    transfer: TransferStage
     quench: QuenchStage
     air: AirStage
     time: TimeControl

@@ -17,13 +17,16 @@ from typing import Any
 import numpy as np
 
 from quenchsim.case.model import (AirStage, Case, MechanicsOptions, MeshSpec, OutputSpec, Probe, ProcessSpec,
-                                  QuenchStage, TimeControl)
+                                  QuenchStage, TimeControl, TransferStage)
 from quenchsim.errors import InputError, require
 from quenchsim.geometry.profile import MM, profile_from_case
 
 DEFAULTS: dict[str, Any] = {
     "mesh": {"size_mm": 5.0, "surface_size_mm": 1.2, "surface_layer_mm": 10.0},
     "process": {"austenitising_temperature_C": 845.0, "room_temperature_C": 25.0},
+    # emissivity 0.80: oxidised iron and steel at 200-600 C, total (FLIR T8xx user's manual, emissivity Table 38.1,
+    # after Bramson, Infrared Radiation: A Handbook for Applications; 0.89 at 1227 C)
+    "transfer": {"time_s": 0.0, "temperature_C": 25.0, "emissivity": 0.8},
     "air": {"temperature_C": 25.0, "until_max_C": 40.0, "time_s": 20000.0, "htc_model": "natural",
             "emissivity": 0.8},
     "time": {"dt_initial_s": 0.02, "dt_min_s": 1e-3, "dt_max_s": 120.0, "max_dT_K": 20.0, "max_dX": 0.1,
@@ -33,11 +36,12 @@ DEFAULTS: dict[str, Any] = {
 }
 
 TABLE_KEYS: dict[str, tuple[str, ...]] = {
-    "": ("name", "description", "material", "geometry", "mesh", "process", "quench", "air", "time", "output",
-         "mechanics", "probes", "measured", "peer", "conditions"),
+    "": ("name", "description", "material", "geometry", "mesh", "process", "transfer", "quench", "air", "time",
+         "output", "mechanics", "probes", "measured", "peer", "conditions"),
     "mesh": ("size_mm", "surface_size_mm", "surface_layer_mm"),
     "process": ("austenitising_temperature_C", "room_temperature_C"),
-    "quench": ("time_s", "htc_model", "bath", "htc_table"),
+    "transfer": ("time_s", "temperature_C", "emissivity"),
+    "quench": ("time_s", "htc_model", "bath", "htc_table", "immersion_speed_mm_s"),
     "air": ("temperature_C", "until_max_C", "time_s", "htc_model", "emissivity", "htc_table"),
     "time": ("dt_initial_s", "dt_min_s", "dt_max_s", "max_dT_K", "max_dX", "growth"),
     "output": ("frames", "checkpoint_minutes"),
@@ -147,7 +151,8 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
     for key in data:
         require(key in TABLE_KEYS[""], key, data[key], f"unknown table or key; a case takes {', '.join(TABLE_KEYS[''])}")
 
-    material = _material(data)
+    material = _material(data, path)
+    data["material"] = material
     geometry = data.get("geometry", {})
     require(isinstance(geometry, Mapping), "geometry", geometry, "must be a table")
     profile = profile_from_case(dict(geometry))
@@ -165,6 +170,11 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
         austenitising_temperature_C=_number(p, "austenitising_temperature_C", "process.austenitising_temperature_C",
                                             minimum=600.0, maximum=1200.0),
         room_temperature_C=_number(p, "room_temperature_C", "process.room_temperature_C", minimum=-50.0, maximum=100.0))
+    t = _table(data, "transfer")
+    transfer = TransferStage(time_s=_number(t, "time_s", "transfer.time_s", minimum=0.0),
+                             temperature_C=_number(t, "temperature_C", "transfer.temperature_C", minimum=-50.0,
+                                                   maximum=200.0),
+                             emissivity=_number(t, "emissivity", "transfer.emissivity", positive=True, maximum=1.0))
     quench = _quench(data, segments, process)
     air = _air(data, segments)
     time = _time(data)
@@ -176,18 +186,27 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
     mechanics = _mechanics(data, material, process)
     probes = _probes(data, profile)
     return Case(name=name, condition=condition, path=path, data=data, material=material, profile=profile,
-                reference_state=reference_state, mesh=mesh, process=process, quench=quench, air=air, time=time,
+                reference_state=reference_state, mesh=mesh, process=process, transfer=transfer, quench=quench,
+                air=air, time=time,
                 output=OutputSpec(frames=frames, checkpoint_minutes=checkpoint_minutes), mechanics=mechanics, probes=probes)
 
 
-def _material(data: Mapping[str, Any]) -> str:
-    from quenchsim.materials import load_material  # data lookup only
+def _material(data: Mapping[str, Any], case_path: Path | None) -> str:
+    """The material's name in materials/, or the path of a steel file (``*.toml``); a relative path is taken from
+    the case file's folder (from the working directory for a case built from a table), and returned absolute."""
+    from quenchsim.materials import load_material, transforms  # data lookup only
 
     if "material" not in data:
         raise InputError("material", None, "is required (a name in materials/)")
     name = data["material"]
     require(isinstance(name, str) and name != "", "material", name, "must be a material name or a path")
-    load_material(name)
+    if name.endswith(".toml"):
+        file = Path(name).expanduser()
+        if not file.is_absolute():
+            file = (case_path.parent if case_path is not None else Path.cwd()) / file
+        require(file.is_file(), "material", name, f"no such file ({file})")
+        name = str(file.resolve())
+    transforms(load_material(name))
     return name
 
 
@@ -219,7 +238,12 @@ def _quench(data: Mapping[str, Any], segments: list[str], process: ProcessSpec) 
         if isinstance(T, (int, float)) and T >= T_aust:
             field = "quench.bath.oil_temperature_C" if model == "bath" else "quench.htc_table.ambient_C"
             raise InputError(field, T, f"the quench medium must be colder than the austenitising temperature {T_aust:g} C")
-    return QuenchStage(time_s=time_s, htc_model=model, bath=bath, htc_table=table)
+    speed = None
+    if "immersion_speed_mm_s" in q:
+        speed = _number(q, "immersion_speed_mm_s", "quench.immersion_speed_mm_s")
+        require(speed > 0, "quench.immersion_speed_mm_s", speed,
+                "must be > 0 mm/s (leave it out for a part immersed all at once)")
+    return QuenchStage(time_s=time_s, htc_model=model, bath=bath, htc_table=table, immersion_speed_mm_s=speed)
 
 
 def _air(data: Mapping[str, Any], segments: list[str]) -> AirStage:
@@ -229,7 +253,7 @@ def _air(data: Mapping[str, Any], segments: list[str]) -> AirStage:
     temperature = _number(a, "temperature_C", "air.temperature_C", minimum=-50.0, maximum=200.0)
     return AirStage(temperature_C=temperature,
                     until_max_C=_number(a, "until_max_C", "air.until_max_C", minimum=temperature),
-                    time_s=_number(a, "time_s", "air.time_s", positive=True),
+                    time_s=_number(a, "time_s", "air.time_s", minimum=0.0),
                     htc_model=model,
                     emissivity=_number(a, "emissivity", "air.emissivity", minimum=0.0, maximum=1.0),
                     htc_table=_htc_tables(a.get("htc_table"), "air.htc_table", segments) if model == "table" else None)

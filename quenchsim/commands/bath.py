@@ -34,7 +34,8 @@ def run(args: argparse.Namespace) -> int:
     bath = case.get("quench.bath", {})
     print(f"{case.name} condition {case.condition or '-'}: {bath.get('quenchant')} at {bath.get('oil_temperature_C')} C, "
           f"ID jets {bath.get('id_jet_speed_mm_s', '-')} mm/s, OD jets {bath.get('od_jet_speed_mm_s', '-')} mm/s, "
-          f"{bath.get('rotation_rpm', 0)} rpm")
+          f"{bath.get('rotation_rpm', 0)} rpm, agitation {case.quench.bath.agitation} "
+          f"({case.quench.bath.agitation_m_s:g} m/s bulk), support {case.quench.bath.support}")
     header = f"{'segment':<22}{'speed m/s':>12}{'T_L C':>10}" + "".join(f"{f'h@{T}':>8}" for T in TABLE_T_C)
     print(header)
     print("-" * len(header))

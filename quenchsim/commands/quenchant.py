@@ -61,7 +61,9 @@ def run(args: argparse.Namespace) -> int:
     from quenchsim.fitting import quenchant as q
 
     if args.action == "show":
-        oil = q.load_probe_quenchant(args.name, field="NAME")
+        from quenchsim.bath.quenchant import load_probe_quenchant
+
+        oil = load_probe_quenchant(args.name, field="NAME")
         print(f"{oil.name}: bath {oil.bath_temperature_C:g} C, agitation {oil.agitation_m_s:g} m/s; "
               f"identified over {oil.identified_C[0]:.0f}-{oil.identified_C[1]:.0f} C")
         print(f"source: {oil.source}\nmethod: {oil.method}")

@@ -74,9 +74,11 @@ def summary_table(s: dict, out: Path) -> str:
     fmt = lambda v, w: f"{v:>{w}.1f}" if v is not None else f"{'-':>{w}}"  # noqa: E731
     for name, p in s["probes"].items():
         rows.append(f"{name:<10}{fmt(p['t_to_500C_s'], 16)}{fmt(p['t_to_300C_s'], 16)}{fmt(p['t8_5_s'], 10)}")
-    h = s["hardness"]
-    rows.append("HRC58 depth at mid-width (mm): " + ", ".join(f"{k.split('_')[1]} {v:.2f}" for k, v in h["depth_mm"].items())
-                + f"; core {h['core_HRC']:.1f} HRC")
+    if "hardness" in s:
+        h = s["hardness"]
+        rows.append("HRC58 depth at mid-width (mm): " + ", ".join(f"{k.split('_')[1]} {v:.2f}" for k, v in h["depth_mm"].items())
+                    + f"; core {h['core_HRC']:.1f} HRC")
+    rows += [f"note: {note}" for note in s.get("notes", [])]
     if "dimensions_mm" in s:
         d = s["dimensions_mm"]
         rows.append(f"{'dimension (mm)':<16}{'before':>10}{'after':>10}{'change':>10}")

@@ -1,4 +1,6 @@
-"""The ISO 9950 / ASTM D6200 cooling-curve probe on quenchsim's own thermal solver (forward model).
+"""The ISO 9950 / ASTM D6200 cooling-curve probe on quenchsim's own thermal solver (the one forward model: the
+quenchant fitter drives it with a tabulated h(T_s), the bath validation with the bath model's curves on
+:meth:`ProbeModel.boundary_points`).
 
 The probe is a cylinder of Inconel 600, 12.5 mm diameter x 60 mm, with a thermocouple at its geometric
 centre, heated to 850 C and quenched into 2 L of the quenchant (ISO 9950:1995, ASTM D6200; dimensions and
@@ -32,6 +34,7 @@ import numpy as np
 import skfem
 
 from quenchsim.errors import InputError, SolverError
+from quenchsim.geometry.boundary import BoundaryPoints, SectionExtent
 from quenchsim.materials import ThermalProperties, load_data_file, thermal_properties
 from quenchsim.thermal import AxisymmetricP2, NoTransformation, TableHTC, ThermalSolver
 
@@ -149,7 +152,7 @@ class ProbeModel:
         centre, surface = self._read @ solver.T
         return float(centre), float(surface)
 
-    def march(self, solver: ThermalSolver, htc: TableHTC, step_ends_s: np.ndarray,
+    def march(self, solver: ThermalSolver, htc: Any, step_ends_s: np.ndarray,
               checkpoints: list[Any] | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Advance ``solver`` through ``step_ends_s`` (all after its present time); returns the centre and
         surface temperature at each step end. With ``checkpoints`` (a list), a copy of the solver before every
@@ -162,7 +165,7 @@ class ProbeModel:
             centre[k], surface[k] = self.read(solver)
         return centre, surface
 
-    def _advance(self, solver: ThermalSolver, htc: TableHTC, dt_s: float, depth: int = 0) -> None:
+    def _advance(self, solver: ThermalSolver, htc: Any, dt_s: float, depth: int = 0) -> None:
         """One scheduled step; if its fixed-point iteration fails (a trial h of the optimiser far from the
         solution), the step is done as four sub-steps instead (at most three levels deep)."""
         try:
@@ -173,10 +176,26 @@ class ProbeModel:
             for _ in range(4):
                 self._advance(solver, htc, dt_s / 4, depth + 1)
 
-    def cool(self, T_nodes_C: np.ndarray, h_nodes_W_m2K: np.ndarray, step_ends_s: np.ndarray) -> ProbeCurve:
-        """Quench the probe from its start temperature with h(T_surface); values at t = 0 included."""
+    def boundary_points(self) -> BoundaryPoints:
+        """The cooled facets' quadrature points (the order the solver's HTC is called with) as the bath model sees
+        them: the side "od" and the end face "bottom", in the whole probe's extent (z from 0 to L, so that the
+        bath's natural-convection and film-boiling lengths are the probe's, not the half model's)."""
+        fe, R, L = self.fe, self.spec.radius_m, self.spec.length_m
+        r, z = fe.facet_r.ravel(), fe.facet_z.ravel()
+        side = np.abs(fe.facet_normals[0].ravel()) > 0.5
+        return BoundaryPoints(r_m=r, z_m=z, normal_r=fe.facet_normals[0].ravel(), normal_z=fe.facet_normals[1].ravel(),
+                              segment=np.where(side, "od", "bottom"), s_m=np.where(side, z, r),
+                              segment_length_m=np.where(side, L / 2, R), extent=SectionExtent(0.0, R, 0.0, L))
+
+    def run(self, htc: Any, step_ends_s: np.ndarray) -> ProbeCurve:
+        """Quench the probe from its start temperature with any boundary HTC ``htc(T_surface_C, time_s)`` (one value
+        per point of :meth:`boundary_points`, with ``ambient_C``); values at t = 0 included."""
         solver = self.start()
         c0, s0 = self.read(solver)
-        centre, surface = self.march(solver, self.htc(T_nodes_C, h_nodes_W_m2K), np.asarray(step_ends_s, float))
+        centre, surface = self.march(solver, htc, np.asarray(step_ends_s, float))
         return ProbeCurve(np.concatenate([[0.0], step_ends_s]), np.concatenate([[c0], centre]),
                           np.concatenate([[s0], surface]))
+
+    def cool(self, T_nodes_C: np.ndarray, h_nodes_W_m2K: np.ndarray, step_ends_s: np.ndarray) -> ProbeCurve:
+        """Quench the probe from its start temperature with h(T_surface) through the nodes; values at t = 0 included."""
+        return self.run(self.htc(T_nodes_C, h_nodes_W_m2K), step_ends_s)

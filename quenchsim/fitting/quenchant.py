@@ -34,9 +34,10 @@ from typing import Any
 import numpy as np
 from scipy.optimize import least_squares
 
+from quenchsim.bath.quenchant import STILL_BATH_KIND
 from quenchsim.errors import InputError, require
 from quenchsim.fitting.probe import ProbeCurve, ProbeModel, step_schedule
-from quenchsim.materials import load_data_file, materials_dir
+from quenchsim.materials import load_data_file
 
 TIME_TEMPERATURE = "time_temperature"
 RATE_TEMPERATURE = "rate_temperature"
@@ -475,28 +476,6 @@ def default_shape(name: str = SHORTCUT_SHAPE_OIL) -> CurveShape:
 
 # --- the quenchant file: a still-bath curve h(T_surface) ----------------------------------------------------
 
-STILL_BATH_KIND = "still_bath_curve"
-
-
-@dataclass(frozen=True)
-class ProbeQuenchant:
-    """A still-bath HTC curve h(T_surface) from a probe test, with the test conditions it holds for.
-
-    ``h(T_surface_C)`` interpolates linearly, constant beyond the ends. ``identified_C`` is the surface-
-    temperature range the probe data saw (outside it the curve is the regularised extrapolation)."""
-
-    name: str
-    T_C: np.ndarray
-    h_W_m2K: np.ndarray
-    bath_temperature_C: float
-    agitation_m_s: float
-    identified_C: tuple[float, float]
-    method: str
-    source: str
-
-    def h(self, T_surface_C: Any) -> np.ndarray:
-        return np.interp(np.asarray(T_surface_C, dtype=float), self.T_C, self.h_W_m2K)
-
 
 def quenchant_document(fit: ProbeFit, *, name: str, source: str, tag: str, agitation_m_s: float = 0.0,
                        description: str = "", data_file: str = "") -> dict[str, Any]:
@@ -549,42 +528,3 @@ def write_quenchant(path: str | Path, doc: dict[str, Any]) -> Path:
     p.parent.mkdir(parents=True, exist_ok=True)
     p.write_text(tomli_w.dumps(doc))
     return p
-
-
-def load_probe_quenchant(path_or_name: str | Path, field: str = "quenchant") -> ProbeQuenchant:
-    """Load a still-bath curve ``materials/quenchants/NAME.toml`` (or a path ending in .toml) written by
-    ``quenchsim quenchant fit`` / ``from-datasheet``; errors name ``field``."""
-    name = str(path_or_name)
-    data = load_data_file(name, "quenchants", field)
-    stem = Path(name).stem
-    if data.get("kind") != STILL_BATH_KIND:
-        raise InputError(field, name, f"is a {data.get('kind', 'untyped')} quenchant file; a still-bath curve "
-                                      f"(kind = \"{STILL_BATH_KIND}\", from `quenchsim quenchant fit`) is needed")
-    htc, test = data.get("htc", {}), data.get("test", {})
-    T = np.asarray(htc.get("T_C", []), dtype=float)
-    h = np.asarray(htc.get("h_W_m2K", []), dtype=float)
-    require(T.size >= 2 and bool(np.all(np.diff(T) > 0)), f"{stem}.htc.T_C", htc.get("T_C"),
-            "needs >= 2 strictly increasing temperatures")
-    require(h.shape == T.shape and bool(np.all(h > 0)), f"{stem}.htc.h_W_m2K", htc.get("h_W_m2K"),
-            f"needs {T.size} positive values (one per T_C)")
-    for key in ("bath_temperature_C", "agitation_m_s"):
-        value = test.get(key)
-        require(isinstance(value, (int, float)) and not isinstance(value, bool), f"{stem}.test.{key}", value,
-                "is required (a number)")
-    lo, hi = htc.get("identified_T_C", [T[0], T[-1]])
-    return ProbeQuenchant(name=str(data.get("name", stem)), T_C=T, h_W_m2K=h,
-                          bath_temperature_C=float(test["bath_temperature_C"]),
-                          agitation_m_s=float(test["agitation_m_s"]), identified_C=(float(lo), float(hi)),
-                          method=str(htc.get("method", "")), source=str(data.get("source", "")))
-
-
-def library() -> list[str]:
-    """Names of the still-bath curves shipped in materials/quenchants/."""
-    import tomllib
-
-    names = []
-    for p in sorted((materials_dir() / "quenchants").glob("*.toml")):
-        with p.open("rb") as fh:
-            if tomllib.load(fh).get("kind") == STILL_BATH_KIND:
-                names.append(p.stem)
-    return names

@@ -152,12 +152,16 @@ def rectangular_ring(inner_diameter_m: float, outer_diameter_m: float, width_m: 
     require(cut >= 0 and 2 * cut < min(wall, width_m), field, cut / MM,
             f"must be >= 0 and less than half the wall ({wall / MM:g} mm) and the width")
     ri, ro = inner_diameter_m / 2, outer_diameter_m / 2
-    if ri == 0:  # solid cylinder: the axis is a symmetry line, not a surface
-        corners = [(0.0, 0.0), (ro, 0.0), (ro, width_m), (0.0, width_m)]
-        prof = _polygon_with_corners(corners, ["bottom", "od", "top", "axis"],
-                                     ["axis_bottom", "chamfer_od_bottom", "chamfer_od_top", "axis_top"], 0.0, False)
-        return prof
     kind = "radius" if edge_radius_m > 0 else "chamfer"
+    if ri == 0:  # solid section: the axis is a symmetry line, not a surface; only the two OD corners are cut
+        w = width_m
+        if cut == 0:
+            return Profile((Segment("bottom", (0.0, 0.0), (ro, 0.0)), Segment("od", (ro, 0.0), (ro, w)),
+                            Segment("top", (ro, w), (0.0, w)), Segment("axis", (0.0, w), (0.0, 0.0))))
+        a0, b0, low = _corner_cut((ro, 0.0), (1.0, 0.0), (0.0, 1.0), cut, edge_radius_m > 0, f"{kind}_od_bottom")
+        a1, b1, high = _corner_cut((ro, w), (0.0, 1.0), (-1.0, 0.0), cut, edge_radius_m > 0, f"{kind}_od_top")
+        return Profile((Segment("bottom", (0.0, 0.0), a0), low, Segment("od", b0, a1), high,
+                        Segment("top", b1, (0.0, w)), Segment("axis", (0.0, w), (0.0, 0.0))))
     corners = [(ri, 0.0), (ro, 0.0), (ro, width_m), (ri, width_m)]
     names = [f"{kind}_bore_bottom", f"{kind}_od_bottom", f"{kind}_od_top", f"{kind}_bore_top"]
     return _polygon_with_corners(corners, ["bottom", "od", "top", "bore"], names, cut, edge_radius_m > 0)
@@ -253,7 +257,8 @@ def profile_from_case(geometry: dict[str, Any]) -> Profile:
         return float(v) * MM
 
     if kind == "rectangular":
-        return rectangular_ring(mm("inner_diameter_mm"), mm("outer_diameter_mm"), mm("width_mm"),
+        require("inner_diameter_mm" in g, "geometry.inner_diameter_mm", None, "is required (0 for a solid section)")
+        return rectangular_ring(mm("inner_diameter_mm", 0.0), mm("outer_diameter_mm"), mm("width_mm"),
                                 mm("chamfer_mm", 0.0), mm("edge_radius_mm", 0.0))
     if kind == "spherical_outer":
         return spherical_outer_ring(mm("raceway_diameter_mm"), mm("outer_diameter_mm"), mm("width_mm"),

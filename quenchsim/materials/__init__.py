@@ -59,6 +59,24 @@ def load_material(name: str, field: str = "material") -> dict[str, Any]:
     return data
 
 
+TRANSFORMATIONS = ("austenite", "none")
+"""``transformations`` of a material file: ``"austenite"`` (default: the austenite decomposes on cooling; the file
+needs [kinetics], [hardness] and the martensite data) or ``"none"`` (nothing transforms, e.g. an austenitic or
+nickel alloy: only [thermal] is needed, the run is thermal only and reports no phases and no hardness)."""
+
+
+def transforms(material: dict[str, Any], field: str = "material") -> bool:
+    """Whether the material's austenite transforms on cooling (its ``transformations`` key, checked)."""
+    value = material.get("transformations", "austenite")
+    name = material.get("name", field)
+    if value not in TRANSFORMATIONS:
+        raise InputError(f"{name}.transformations", value, f"must be one of {', '.join(TRANSFORMATIONS)}")
+    if value == "none" and "mechanics" in material:
+        raise InputError(f"{name}.transformations", value, "a non-transforming material is thermal only: remove its "
+                                                           "mechanics table/file (the stress model needs the phases)")
+    return value != "none"
+
+
 @dataclass(frozen=True)
 class ThermalProperties:
     """rho(T, X), k(T, X), c_p(T, X) and the latent heat L_i(T) (J/kg) released by austenite -> phase i."""

@@ -100,3 +100,33 @@ class SurfaceTemperatureHTC:
 
     def __call__(self, T_surface_C: np.ndarray, time_s: float) -> np.ndarray:
         return self.curves(T_surface_C)
+
+
+class ImmersionHTC:
+    """A part lowered into the bath bottom face first at ``speed_m_s`` from ``start_s``: the boundary points below
+    the oil level z_level(t) = z_bottom + speed (t - start) get the bath's h (``immersed``), those above it still
+    the air's (``in_air``), in the ``htc(T_surface_C, time_s)`` form the solver calls.
+
+    The solver takes one ambient temperature per point (the bath's, ``ambient_C``); a point still in air is given
+    the coefficient that carries its air flux to that ambient, h_air (T_s - T_air)/(T_s - T_bath) (the same heat
+    flux; the part is far hotter than either medium while it is lowered, and the difference is kept >= 1 K)."""
+
+    def __init__(self, immersed: Any, in_air: Any, point_z_m: np.ndarray, bottom_z_m: float, speed_m_s: float,
+                 start_s: float) -> None:
+        self.immersed, self.in_air = immersed, in_air
+        self.point_z_m = np.asarray(point_z_m, dtype=float)
+        self.bottom_z_m, self.speed_m_s, self.start_s = float(bottom_z_m), float(speed_m_s), float(start_s)
+        self.ambient_C = np.asarray(immersed.ambient_C, dtype=float)
+
+    def wetted(self, time_s: float) -> np.ndarray:
+        """Which boundary points are below the oil level at ``time_s``."""
+        return self.point_z_m <= self.bottom_z_m + self.speed_m_s * max(time_s - self.start_s, 0.0)
+
+    def __call__(self, T_surface_C: np.ndarray, time_s: float) -> np.ndarray:
+        shape = np.shape(T_surface_C)
+        T = np.asarray(T_surface_C, dtype=float).reshape(-1)
+        wet = self.wetted(time_s)
+        if np.all(wet):
+            return self.immersed(T, time_s).reshape(shape)
+        h_air = self.in_air(T, time_s) * (T - self.in_air.ambient_C) / np.maximum(T - self.ambient_C, 1.0)
+        return np.where(wet, self.immersed(T, time_s), h_air).reshape(shape)

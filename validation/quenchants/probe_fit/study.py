@@ -12,8 +12,8 @@ from typing import Any
 import numpy as np
 
 from quenchsim.fitting.probe import ProbeMesh, ProbeModel, ProbeSpec
-from quenchsim.fitting.quenchant import (TIME_TEMPERATURE, ProbeData, cooling_figures, fit_probe_curve, library,
-                                         load_probe_quenchant)
+from quenchsim.bath.quenchant import library, load_probe_quenchant
+from quenchsim.fitting.quenchant import TIME_TEMPERATURE, ProbeData, cooling_figures, fit_probe_curve
 from quenchsim.materials import load_data_file, thermal_properties
 
 TITLE = "Quenchants: ISO 9950 probe fit, library oils and measured cylinders"
