@@ -17,6 +17,7 @@ import math
 import signal
 import threading
 import time
+import zipfile
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -409,9 +410,10 @@ class QuenchRun:
     def _restore(self, header: dict[str, Any], state: dict[str, Any]) -> dict[str, Any]:
         """Put the checkpoint's state into the freshly built solvers; returns what :meth:`run` needs."""
         mesh_p = state["run"]["mesh_p"]
-        if mesh_p.shape != self.section.mesh.p.shape or not np.allclose(mesh_p, self.section.mesh.p, rtol=0, atol=1e-12):
-            raise InputError("--resume", str(self.checkpoint_path),
-                             "the checkpoint's mesh differs from the one built now (another gmsh?); run without --resume")
+        p = self.section.mesh.p
+        if mesh_p.shape != p.shape or not np.allclose(mesh_p, p, rtol=0.0, atol=1e-12):
+            raise InputError("--resume", str(self.checkpoint_path), "the checkpoint's mesh differs from the one "
+                             "built now (another gmsh version?); run without --resume")
         self.thermal.restore_state(state["thermal"], self.phase_model.restore_state(state["phases"]))
         if self.mech is not None:
             self.mech.restore_state(state["mechanics"])
@@ -578,7 +580,7 @@ def read_resumable(case: Case, out_dir: Path) -> tuple[dict[str, Any], dict[str,
                          "completed, or never reached its first checkpoint); run without --resume")
     try:
         header, state = read_checkpoint(path)
-    except (OSError, ValueError, KeyError) as exc:
+    except (OSError, ValueError, KeyError, zipfile.BadZipFile) as exc:
         raise InputError("--resume", str(path), f"cannot be read ({exc}); run without --resume") from None
     if header.get("format") != CHECKPOINT_FORMAT:
         raise InputError("--resume", str(path), f"is of checkpoint format {header.get('format')}, this version "

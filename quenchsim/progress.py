@@ -41,10 +41,10 @@ class CoolingProgress:
     step) reaches the end temperature. The estimate shown never rises, so the model errs high where it must
     guess (a later stage's length is its clock), never low. Measured (tests/test_progress.py, the estimate of
     :class:`TimeLeft` on the CPU clock, steps between 10 % and 90 % of the run within a factor 2 of the real
-    time left): the small test ring 96 %, ring A condition 1 80 % (at worst 4.7x high), the peer race 35 % (most
-    steps go to the vapour film while the mean hardly moves: up to 5x high until the film collapses); and the
-    small ring with ``time.dt_max_s = 0.05`` none: the quench pace says nothing about a long air stage of
-    capped steps, so the estimate made in the quench stays low."""
+    time left): the small test ring 96 % (89 % counted in steps), ring A condition 1 80 % (at worst 4.7x high),
+    the peer race 35 % (most steps go to the vapour film while the mean hardly moves: up to 5x high until the
+    film collapses); and the small ring with ``time.dt_max_s = 0.05`` none: the quench pace says nothing about a
+    long air stage of capped steps, so the estimate made in the quench stays low."""
 
     def __init__(self, T_start_C: float, T_end_C: float, T_sink_C: float, dt_max_s: float) -> None:
         self.T_start_C = T_start_C
@@ -79,7 +79,8 @@ class TimeLeft:
     """A time-left estimate that never rises: the raw estimate (the steps left, :meth:`CoolingProgress.steps_left`,
     at the average wall time per step so far) is followed while it falls and held while it rises; none is given
     before ``warmup_fraction`` of the cooling is done (the first steps' pace says little). ``history`` keeps every
-    ``(elapsed_s, fraction, raw_estimate_s, estimate_s)``, elapsed from the first step, for checking the estimate after the run."""
+    ``(elapsed_s, fraction, raw_estimate_s, estimate_s)``, elapsed from the first step, for checking the estimate
+    after the run."""
 
     def __init__(self, clock: Callable[[], float] = time.perf_counter, warmup_fraction: float = 0.1) -> None:
         self.clock = clock

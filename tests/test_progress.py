@@ -19,10 +19,12 @@ from quenchsim.progress import STEPS, RunProgress
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def recorded_run(case, out):
-    """Run ``case`` with the estimate on the process's CPU clock (other processes' load does not move it)."""
+def recorded_run(case, out, clock=time.process_time):
+    """Run ``case`` with the estimate on ``clock`` (default the process's CPU time, which other processes' load
+    does not move; ``"steps"``: the steps taken, which checks the model of the steps left alone)."""
     run = QuenchRun(case, out, progress=False)
-    run.bar = RunProgress(case.name, 1.0, enabled=False, clock=time.process_time)
+    run.bar = RunProgress(case.name, 1.0, enabled=False,
+                          clock=(lambda: float(run.counts["steps"])) if clock == "steps" else clock)
     run.run()
     history = np.array(run.bar.time_left.history)     # (elapsed, fraction, raw estimate, estimate) per step
     return history[:, 0], history[:, 3], history[-1, 0]
@@ -49,11 +51,15 @@ def within_factor_2(elapsed, estimate, end):
 
 
 def test_the_time_left_never_rises_and_is_within_a_factor_2_on_the_small_ring(tmp_path):
-    elapsed, estimate, end = recorded_run(case_from_dict(plastic_ring()), tmp_path)
+    """On the CPU clock the estimate never rises; counted in steps (a 0.4 s run is too short for its CPU time per
+    step to be steady inside a test session) it is within a factor 2 of the steps left."""
+    elapsed, estimate, end = recorded_run(case_from_dict(plastic_ring()), tmp_path / "cpu")
     assert len(estimate) > 20
     assert np.all(np.diff(estimate) <= 0.0)
+    elapsed, estimate, end = recorded_run(case_from_dict(plastic_ring()), tmp_path / "steps", clock="steps")
+    assert np.all(np.diff(estimate) <= 0.0)
     share, low, high = within_factor_2(elapsed, estimate, end)
-    assert share >= 0.8, (share, low, high)                   # measured 0.96 (0.47..0.94)
+    assert share >= 0.85, (share, low, high)                  # measured 0.89 (0.39..1.37), deterministic
 
 
 @pytest.mark.slow

@@ -78,7 +78,8 @@ def solid_cylinder():
 
 
 @pytest.mark.parametrize("make_case", [lambda: case_from_dict(plastic_ring()), lambda: case_from_dict(handled_ring()),
-                                       solid_cylinder], ids=["plastic_ring", "transfer_and_immersion", "solid_cylinder"])
+                                       solid_cylinder],
+                         ids=["plastic_ring", "transfer_and_immersion", "solid_cylinder"])
 def test_a_run_stopped_at_a_random_step_resumes_to_the_uninterrupted_result(tmp_path, monkeypatch, make_case):
     case = make_case()
     reference = qs.run(case, tmp_path / "reference", progress=False)

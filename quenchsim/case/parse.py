@@ -188,7 +188,8 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
     return Case(name=name, condition=condition, path=path, data=data, material=material, profile=profile,
                 reference_state=reference_state, mesh=mesh, process=process, transfer=transfer, quench=quench,
                 air=air, time=time,
-                output=OutputSpec(frames=frames, checkpoint_minutes=checkpoint_minutes), mechanics=mechanics, probes=probes)
+                output=OutputSpec(frames=frames, checkpoint_minutes=checkpoint_minutes), mechanics=mechanics,
+                probes=probes)
 
 
 def _material(data: Mapping[str, Any], case_path: Path | None) -> str:

@@ -75,7 +75,8 @@ def _with_matrices(state: dict[str, Any]) -> dict[str, Any]:
         if isinstance(value, dict):
             if _CSR in value:
                 m = value[_CSR]
-                state[key] = sp.csr_matrix((m["data"], m["indices"], m["indptr"]), shape=tuple(int(n) for n in m["shape"]))
+                shape = tuple(int(n) for n in m["shape"])
+                state[key] = sp.csr_matrix((m["data"], m["indices"], m["indptr"]), shape=shape)
             else:
                 _with_matrices(value)
     return state

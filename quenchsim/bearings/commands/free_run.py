@@ -23,8 +23,8 @@ from quenchsim.errors import InputError
 INERTIA = Range(0.0, 1e6, low_open=True, unit="kg m^2")
 RANGES = {**GEOMETRY, "clock_hz": Range(0.0, 1e12, low_open=True, unit="Hz"), "inertia": INERTIA,
           "rotor_inertia": INERTIA, "bearings_count": Range(1, 1000, integer=True),
-          "cage_inertia": Range(0.0, 1e6, unit="kg m^2"), "alpha_percent": Range(0.0, 100.0, low_open=True, high_open=True,
-                                                                                 unit="%")}
+          "cage_inertia": Range(0.0, 1e6, unit="kg m^2"),
+          "alpha_percent": Range(0.0, 100.0, low_open=True, high_open=True, unit="%")}
 """Physical ranges of the numeric options (checked before any work, see :mod:`quenchsim.bearings.commands.ranges`)."""
 
 

@@ -29,8 +29,10 @@ LEVEL = Range(1, 10, integer=True)
 """Grid levels: level 10 is 5121 x 1025 nodes, beyond it a solve outgrows the memory of a workstation."""
 RANGES = {"bearing_number": Range(0.0, 1e6), "eccentricity": Range(0.0, 1.0, high_open=True),
           "displacement_angle": Range(-360.0, 360.0, unit="deg"), "ld": Range(0.0, 20.0, low_open=True),
-          "grooves": Range(1, 1000, integer=True), "groove_angle": Range(0.0, 90.0, low_open=True, high_open=True, unit="deg"),
-          "groove_depth": Range(0.0, 100.0, low_open=True), "groove_width_ratio": Range(0.0, 1.0, low_open=True, high_open=True),
+          "grooves": Range(1, 1000, integer=True),
+          "groove_angle": Range(0.0, 90.0, low_open=True, high_open=True, unit="deg"),
+          "groove_depth": Range(0.0, 100.0, low_open=True),
+          "groove_width_ratio": Range(0.0, 1.0, low_open=True, high_open=True),
           "groove_length_ratio": Range(0.0, 1.0, low_open=True), "level": LEVEL, "levels": LEVEL,
           "sor_omega": Range(0.0, 2.0, low_open=True, high_open=True), "load": Range(-1e6, 1e6),
           "mass": POSITIVE, "mass_parameter": POSITIVE, "duration": Range(0.0, 1e6, low_open=True),
