@@ -33,11 +33,12 @@ def load_case(path: str | Path, condition: str | None = None, overrides: dict[st
     return _load_case(path, condition, overrides)
 
 
-def run(case: "Case", out: str | Path, progress: bool = True) -> "RunResult":
-    """Run a case into the folder ``out`` (see README "What a run writes")."""
+def run(case: "Case", out: str | Path, progress: bool = True, resume: bool = False) -> "RunResult":
+    """Run a case into the folder ``out`` (see README "What a run writes"); ``resume=True`` continues the
+    interrupted run of the same case in ``out`` from its checkpoint."""
     from quenchsim.pipeline import run as _run
 
-    return _run(case, out, progress=progress)
+    return _run(case, out, progress=progress, resume=resume)
 
 
 def load_results(run_dir: str | Path) -> "RunResults":

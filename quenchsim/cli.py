@@ -82,7 +82,11 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args()
     try:
         if getattr(args, "_bearing_module", None):
-            result = importlib.import_module(args._bearing_module).run(args)
+            from quenchsim.bearings.commands.ranges import check_ranges
+
+            verb = importlib.import_module(args._bearing_module)
+            check_ranges(args, getattr(verb, "RANGES", {}))
+            result = verb.run(args)
             if args.json:
                 print(json.dumps(result, default=float))
             else:

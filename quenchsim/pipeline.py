@@ -11,11 +11,13 @@ and records where it stopped in ``summary.json``.
 from __future__ import annotations
 
 import contextlib
+import json
 import logging
 import math
 import signal
 import threading
 import time
+import zipfile
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -23,24 +25,23 @@ from typing import Any
 
 import numpy as np
 import skfem
-from tqdm import tqdm
-
 from quenchsim import mechanics, metallurgy
 from quenchsim.case import Case
-from quenchsim.errors import QuenchsimError, RunInterrupted, SolverError
+from quenchsim.errors import InputError, QuenchsimError, RunInterrupted, SolverError
 from quenchsim.fem import INTORDER
 from quenchsim.geometry import BoundaryPoints, SectionMesh, boundary_points, mesh_profile
 from quenchsim.geometry.profile import MM, Profile
+from quenchsim.io.checkpoint import FORMAT_VERSION as CHECKPOINT_FORMAT
+from quenchsim.io.checkpoint import read_checkpoint, write_checkpoint
 from quenchsim.materials import load_material, thermal_properties, transforms
-from quenchsim.results import RunWriter
+from quenchsim.progress import CoolingProgress, RunProgress
+from quenchsim.results import RunWriter, files
 from quenchsim.results.postprocess import NodalProjection, phase_statistics
 from quenchsim.results.summary import (FinalSection, hardness_summary, probe_times, residual_stress_summary,
                                        residual_traverse)
 from quenchsim.thermal import AxisymmetricP2, ImmersionHTC, SurfaceTemperatureHTC, ThermalSolver, parse_htc_table
 
 log = logging.getLogger("quenchsim")
-# simulated seconds with one decimal (the float step sum would print as 46.931000000000004/900.0)
-PROGRESS_FORMAT = "{l_bar}{bar}| {n:.1f}/{total:.0f} s simulated [{elapsed}<{remaining}]"
 
 
 @dataclass
@@ -51,9 +52,10 @@ class RunResult:
     probe_T_C: dict[str, np.ndarray] = field(repr=False, default_factory=dict)
 
 
-def run(case: Case, out_dir: str | Path, progress: bool = True) -> RunResult:
-    """Run ``case`` and write everything into ``out_dir`` (the output contract: :mod:`quenchsim.results`)."""
-    return QuenchRun(case, Path(out_dir), progress=progress).run()
+def run(case: Case, out_dir: str | Path, progress: bool = True, resume: bool = False) -> RunResult:
+    """Run ``case`` and write everything into ``out_dir`` (the output contract: :mod:`quenchsim.results`);
+    ``resume`` continues the run of the same case in ``out_dir`` from its checkpoint."""
+    return QuenchRun(case, Path(out_dir), progress=progress, resume=resume).run()
 
 
 # -- section ------------------------------------------------------------------------------------
@@ -102,6 +104,22 @@ def cooled_surface_points(fe: AxisymmetricP2, section: SectionMesh) -> BoundaryP
     return boundary_points(section, fe.facets, fe.facet_r, fe.facet_z, fe.facet_normals)
 
 
+@dataclass(frozen=True)
+class Stage:
+    """One stage of the run: it lasts ``duration_s`` or ends once the hottest point is at or below
+    ``until_max_C``; its boundary is :func:`stage_htc` of its ``name``."""
+
+    name: str
+    duration_s: float
+    until_max_C: float = -math.inf
+
+
+def stages(case: Case) -> list[Stage]:
+    """The stages of a run in order (the progress bar and the checkpoints count them)."""
+    return [Stage("transfer", case.transfer.time_s), Stage("quench", case.quench.time_s),
+            Stage("air", case.air.time_s, case.air.until_max_C)]
+
+
 def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
     """The HTC of the transfer, quench or air stage as ``htc(T_surface, t)`` with ``ambient_C`` per point.
 
@@ -144,6 +162,12 @@ class _Untransformed:
     def fractions(self, state: Any) -> dict[str, np.ndarray]:
         return state.fractions
 
+    def checkpoint_state(self, state: Any) -> dict[str, Any]:
+        return {"fractions": state.fractions}
+
+    def restore_state(self, arrays: dict[str, Any]) -> Any:
+        return _UntransformedState({p: np.array(v) for p, v in arrays["fractions"].items()})
+
 
 class _Kinetics:
     """Adapter: the metallurgy package as the thermal solver's phase model."""
@@ -157,17 +181,34 @@ class _Kinetics:
     def fractions(self, state: Any) -> dict[str, np.ndarray]:
         return state.fractions
 
+    def checkpoint_state(self, state: Any) -> dict[str, Any]:
+        return {"fractions": state.fractions, "additivity": state.additivity, "T_min_C": state.T_min_C,
+                "cooling_rate_700_C_s": state.cooling_rate_700_C_s}
+
+    def restore_state(self, arrays: dict[str, Any]) -> Any:
+        return metallurgy.PhaseState(fractions={p: np.array(v) for p, v in arrays["fractions"].items()},
+                                     additivity={r: np.array(v) for r, v in arrays.get("additivity", {}).items()},
+                                     T_min_C=np.array(arrays["T_min_C"]),
+                                     cooling_rate_700_C_s=np.array(arrays["cooling_rate_700_C_s"]))
+
 
 # -- the run ------------------------------------------------------------------------------------
 class QuenchRun:
     """Everything of one run: section, solvers, output writer. Use :func:`run`."""
 
-    def __init__(self, case: Case, out_dir: Path, progress: bool = True) -> None:
+    def __init__(self, case: Case, out_dir: Path, progress: bool = True, resume: bool = False) -> None:
         self.case = case
+        # a resumed run checks its case against the folder's before anything is written or meshed
+        self.checkpoint_path = Path(out_dir) / files.CHECKPOINT_NPZ
+        checkpoint = read_resumable(case, Path(out_dir)) if resume else None
         self.writer = RunWriter(out_dir)
         self.out = self.writer.out
         self.writer.case(case.resolved())
-        self.progress = progress
+        if not resume:
+            self.checkpoint_path.unlink(missing_ok=True)   # another run's state: never to be resumed into this one
+        self.bar = RunProgress(f"{case.name}[{case.condition}]" if case.condition else case.name,
+                               sum(st.duration_s for st in stages(case)), enabled=progress)
+        self.bar.phase("meshing")
         self.material = load_material(case.material)
         self.T_aust = case.process.austenitising_temperature_C
         self.T_room = case.process.room_temperature_C
@@ -194,6 +235,8 @@ class QuenchRun:
         pts = np.array([[p.r_mm * MM, p.z_mm * MM] for p in case.probes]).reshape(-1, 2)
         self.probe_matrix = self.fe.basis.probes(pts.T * self.case_to_hot) if len(pts) else None
         self.timings: dict[str, float] = {}
+        self.stop = _StopRequest()
+        self.restored = None if checkpoint is None else self._restore(*checkpoint)
 
     def probe_temperatures(self) -> np.ndarray:
         return self.probe_matrix @ self.thermal.T if self.probe_matrix is not None else np.zeros(0)
@@ -217,15 +260,24 @@ class QuenchRun:
         wall0 = time.perf_counter()
         vtk = self.writer.series(self.section.mesh.p, self.section.mesh.t)
         probes = self.writer.probes(self.probe_names)
-        self.times, self.probe_rows = [0.0], [self.probe_temperatures()]
-        probes.write(0.0, self.probe_rows[0])
-        vtk.write(0.0, self.nodal_fields())
-        self._last_frame_T = self.thermal.T.copy()
-        self.counts = {"steps": 0, "rejected": 0, "heat_out_J": 0.0, "latent_J": 0.0}
+        if self.restored is None:
+            self.times, self.probe_rows = [0.0], [self.probe_temperatures()]
+            probes.write(0.0, self.probe_rows[0])
+            vtk.write(0.0, self.nodal_fields())
+            self._last_frame_T = self.thermal.T.copy()
+            self.counts = {"steps": 0, "rejected": 0, "heat_out_J": 0.0, "latent_J": 0.0}
+            self.position = {"stage": 0, "stage_end_s": None, "dt_s": case.time.dt_initial_s}
+        else:  # the probe rows and frames up to the checkpoint, as the interrupted run wrote them
+            for t, row in zip(self.times, self.probe_rows):
+                probes.write(t, row)
+            vtk.resume(self.restored["frames"])
+            wall0 -= self.restored["wall_time_s"]
+        self.wall0 = wall0
         status, error = "ok", None
         try:
-            with _terminate_as_interrupt():
+            with _signals_as_stop_request(self.stop):
                 self._stages(vtk, probes)
+                self.stop.check()
                 end_state = self._end_state()
         except (KeyboardInterrupt, RunInterrupted) as exc:
             status, error = "interrupted", str(exc) or "interrupted (Ctrl-C)"
@@ -237,6 +289,7 @@ class QuenchRun:
             log.error("run stopped at t = %.4g s: %s", self.thermal.time_s, exc)
         finally:
             probes.close()
+        self.bar.phase("output")
         self.writer.final_3d(self._final_frame(vtk))
         time_arr = np.asarray(self.times)
         probe_T = {n: np.array([row[i] for row in self.probe_rows]) for i, n in enumerate(self.probe_names)}
@@ -252,28 +305,46 @@ class QuenchRun:
             summary["error"] = error
             summary["stopped_at_s"] = self.thermal.time_s
         self.writer.summary(summary)
+        self.bar.close()
+        if status == "ok":
+            self.checkpoint_path.unlink(missing_ok=True)   # the run is complete: nothing to resume
         if status == "interrupted":
             raise RunInterrupted(f"run interrupted at t = {self.thermal.time_s:.4g} s; results up to there are in "
-                                 f"{self.out} (summary.json status 'interrupted')")
+                                 f"{self.out} (summary.json status 'interrupted'; continue it with --resume)")
         if error:
             raise SolverError(f"{error} (results up to t = {self.thermal.time_s:.4g} s are in {self.out})")
         return RunResult(self.out, summary, time_arr, probe_T)
 
     def _stages(self, vtk: Any, probes: Any) -> None:
-        """March the quench and the air stage with adaptive steps (see the module docstring)."""
-        case, ctl, counts = self.case, self.case.time, self.counts
-        dt = ctl.dt_initial_s
+        """March the stages with adaptive steps (see the module docstring), from the checkpoint when resumed.
+
+        A checkpoint is written at each stage end, every ``output.checkpoint_minutes`` of wall time and when a
+        signal asks the run to stop; each holds the state after a committed step, so the run continues from it
+        to the same result."""
+        case, ctl, counts, position = self.case, self.case.time, self.counts, self.position
         frame_dT = (self.T_aust - self.T_room) / case.output.frames
-        stages = [("transfer", case.transfer.time_s, -math.inf), ("quench", case.quench.time_s, -math.inf),
-                  ("air", case.air.time_s, case.air.until_max_C)]
-        for stage, duration, until in stages:
+        every_s = 60.0 * case.output.checkpoint_minutes
+        last_checkpoint = time.perf_counter()
+        plan = stages(case)
+        estimate = CoolingProgress(self.T_aust, case.air.until_max_C, case.air.temperature_C, ctl.dt_max_s)
+        for index in range(position["stage"], len(plan)):
+            stage = plan[index]
+            if stage.duration_s <= 0.0:     # a stage the case leaves out (no transfer, no air cooling)
+                position["stage"] = index + 1
+                continue
+            self.bar.phase(f"{stage.name}: boundary HTC")
             with self.timer("bath_htc_s"):
-                htc = stage_htc(case, stage, self.points)
-            t_end = self.thermal.time_s + duration
-            bar = tqdm(total=round(duration, 3), desc=f"{case.name}[{case.condition}] {stage}", unit="s",
-                       bar_format=PROGRESS_FORMAT, disable=not self.progress, leave=False)
-            while self.thermal.time_s < t_end - 1e-9 and float(np.max(self.thermal.T)) > until:
-                dt = min(dt, t_end - self.thermal.time_s)
+                htc = stage_htc(case, stage.name, self.points)
+            if position["stage_end_s"] is None:
+                position["stage_end_s"] = self.thermal.time_s + stage.duration_s
+            t_end = position["stage_end_s"]
+            self.bar.phase(stage.name)
+            while self.thermal.time_s < t_end - 1e-9 and float(np.max(self.thermal.T)) > stage.until_max_C:
+                if self.stop.requested or time.perf_counter() - last_checkpoint >= every_s:
+                    self._checkpoint(vtk)
+                    last_checkpoint = time.perf_counter()
+                    self.stop.check()
+                dt = min(position["dt_s"], t_end - self.thermal.time_s)
                 try:
                     with self.timer("thermal_metallurgy_s"):
                         step = self.thermal.try_step(dt, htc)
@@ -281,11 +352,11 @@ class QuenchRun:
                     if dt / 2 < ctl.dt_min_s:
                         raise
                     log.warning("%s; cutting the step to %.3g s", exc, dt / 2)
-                    dt, counts["rejected"] = dt / 2, counts["rejected"] + 1
+                    position["dt_s"], counts["rejected"] = dt / 2, counts["rejected"] + 1
                     continue
                 limit = max(step.max_dT_K / ctl.max_dT_K, step.max_dX / ctl.max_dX)
                 if limit > 2.0 and dt / 2 >= ctl.dt_min_s:
-                    dt, counts["rejected"] = dt / 2, counts["rejected"] + 1
+                    position["dt_s"], counts["rejected"] = dt / 2, counts["rejected"] + 1
                     continue
                 with self.timer("mechanics_s"):
                     converged = self._mechanics_step(step.T_qp, step.phase_state.fractions)
@@ -295,7 +366,7 @@ class QuenchRun:
                                           f"even with the smallest step {dt:.3g} s")
                     log.warning("stress Newton did not converge (dt = %.3g s at t = %.4g s); cutting the step",
                                 dt, self.thermal.time_s)
-                    dt, counts["rejected"] = dt / 2, counts["rejected"] + 1
+                    position["dt_s"], counts["rejected"] = dt / 2, counts["rejected"] + 1
                     continue
                 self.thermal.commit(step)
                 counts["steps"] += 1
@@ -310,10 +381,49 @@ class QuenchRun:
                     with self.timer("output_s"):
                         vtk.write(self.thermal.time_s, self.nodal_fields())
                     self._last_frame_T = self.thermal.T.copy()
-                bar.update(round(step.dt_s, 3))
                 grow = ctl.growth if limit < 1e-12 else min(ctl.growth, 0.9 / limit)
-                dt = float(np.clip(dt * grow, ctl.dt_min_s, ctl.dt_max_s))
-            bar.close()
+                position["dt_s"] = float(np.clip(dt * grow, ctl.dt_min_s, ctl.dt_max_s))
+                clock_left = t_end - self.thermal.time_s + sum(st.duration_s for st in plan[index + 1:])
+                self.bar.update(self.thermal.time_s, estimate.fraction(self.thermal.T), counts["steps"],
+                                estimate.steps_left(counts["steps"], self.thermal.time_s, self.thermal.T,
+                                                    position["dt_s"], clock_left, math.isfinite(stage.until_max_C)))
+            position["stage"], position["stage_end_s"] = index + 1, None
+            self._checkpoint(vtk)
+            last_checkpoint = time.perf_counter()
+        self.bar.finish(self.thermal.time_s)
+
+    # -- checkpoints ----------------------------------------------------------------------------
+    def _checkpoint(self, vtk: Any) -> None:
+        """Write the whole state after the last committed step to the run folder (atomically)."""
+        with self.timer("checkpoint_s"):
+            state = {"thermal": self.thermal.checkpoint_state(),
+                     "phases": self.phase_model.checkpoint_state(self.thermal.phase_state),
+                     "run": {"times": np.asarray(self.times), "probe_rows": np.asarray(self.probe_rows),
+                             "last_frame_T": self._last_frame_T, "mesh_p": self.section.mesh.p}}
+            if self.mech is not None:
+                state["mechanics"] = self.mech.checkpoint_state()
+            header = {"case": self.case.resolved(), "position": self.position, "counts": self.counts,
+                      "frames": vtk.frames, "wall_time_s": time.perf_counter() - self.wall0,
+                      "timings_s": self.timings, "time_s": self.thermal.time_s}
+            write_checkpoint(self.checkpoint_path, state, header)
+
+    def _restore(self, header: dict[str, Any], state: dict[str, Any]) -> dict[str, Any]:
+        """Put the checkpoint's state into the freshly built solvers; returns what :meth:`run` needs."""
+        mesh_p = state["run"]["mesh_p"]
+        p = self.section.mesh.p
+        if mesh_p.shape != p.shape or not np.allclose(mesh_p, p, rtol=0.0, atol=1e-12):
+            raise InputError("--resume", str(self.checkpoint_path), "the checkpoint's mesh differs from the one "
+                             "built now (another gmsh version?); run without --resume")
+        self.thermal.restore_state(state["thermal"], self.phase_model.restore_state(state["phases"]))
+        if self.mech is not None:
+            self.mech.restore_state(state["mechanics"])
+        self.times = [float(t) for t in state["run"]["times"]]
+        self.probe_rows = list(np.asarray(state["run"]["probe_rows"]).reshape(len(self.times), -1))
+        self._last_frame_T = np.array(state["run"]["last_frame_T"])
+        self.counts, self.position = header["counts"], header["position"]
+        self.timings.update(header["timings_s"])
+        log.warning("resuming %s from its checkpoint at t = %.6g s", self.out, self.thermal.time_s)
+        return {"frames": [tuple(f) for f in header["frames"]], "wall_time_s": float(header["wall_time_s"])}
 
     def _end_state(self, closing_step: bool = True) -> dict[str, Any]:
         """Close the run at room temperature when the part has cooled to within ``air.until_max_C``;
@@ -461,19 +571,77 @@ class QuenchRun:
         return out
 
 
+def read_resumable(case: Case, out_dir: Path) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The checkpoint of ``out_dir`` when it belongs to ``case`` (the same resolved inputs); otherwise a one-line
+    :class:`InputError` (no checkpoint, another case, another checkpoint format)."""
+    path = out_dir / files.CHECKPOINT_NPZ
+    if not path.is_file():
+        raise InputError("--resume", str(out_dir), f"holds no {files.CHECKPOINT_NPZ} to continue from (the run "
+                         "completed, or never reached its first checkpoint); run without --resume")
+    try:
+        header, state = read_checkpoint(path)
+    except (OSError, ValueError, KeyError, zipfile.BadZipFile) as exc:
+        raise InputError("--resume", str(path), f"cannot be read ({exc}); run without --resume") from None
+    if header.get("format") != CHECKPOINT_FORMAT:
+        raise InputError("--resume", str(path), f"is of checkpoint format {header.get('format')}, this version "
+                         f"reads {CHECKPOINT_FORMAT}; run without --resume")
+    difference = _first_difference(_results_inputs(header["case"]), _results_inputs(case.resolved()))
+    if difference is not None:
+        raise InputError("--resume", str(out_dir), f"its run is of another case ({difference}); resume with the "
+                         "same case file, condition and --set options, or run without --resume")
+    return header, state
+
+
+def _results_inputs(resolved: dict[str, Any]) -> dict[str, Any]:
+    """A resolved case as JSON data without the options that change no result (how often to checkpoint)."""
+    data = json.loads(json.dumps(resolved))
+    data.get("output", {}).pop("checkpoint_minutes", None)
+    return data
+
+
+def _first_difference(there: Any, here: Any, key: str = "") -> str | None:
+    """The first dotted key where two resolved cases differ, as ``key: A there, B here``."""
+    if isinstance(there, dict) and isinstance(here, dict):
+        for k in sorted(set(there) | set(here)):
+            found = _first_difference(there.get(k), here.get(k), f"{key}.{k}" if key else k)
+            if found:
+                return found
+        return None
+    return None if there == here else f"{key}: {there!r} there, {here!r} here"
+
+
+class _StopRequest:
+    """SIGTERM (a batch scheduler's time limit) or SIGINT (Ctrl-C) as a request to stop, honoured by the step
+    loop after its last committed step (so the checkpoint it writes is whole); a second signal stops at once."""
+
+    def __init__(self) -> None:
+        self.signal_name: str | None = None
+
+    @property
+    def requested(self) -> bool:
+        return self.signal_name is not None
+
+    def __call__(self, signum: int, frame: Any) -> None:
+        name = signal.Signals(signum).name
+        if self.signal_name is not None:
+            raise RunInterrupted(f"interrupted by a second signal {name}")
+        self.signal_name = name
+
+    def check(self) -> None:
+        if self.signal_name is not None:
+            raise RunInterrupted(f"interrupted by signal {self.signal_name}")
+
+
 @contextlib.contextmanager
-def _terminate_as_interrupt() -> Iterator[None]:
-    """Turn SIGTERM (a batch scheduler's time limit) into :class:`RunInterrupted` while the stages run, so the
-    run writes its summary with status "interrupted" (only in the main thread, where signals are delivered)."""
+def _signals_as_stop_request(stop: _StopRequest) -> Iterator[None]:
+    """Route SIGTERM and SIGINT to ``stop`` while the stages run (only in the main thread, where signals are
+    delivered; elsewhere Ctrl-C stays a KeyboardInterrupt)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-
-    def handler(signum: int, frame: Any) -> None:
-        raise RunInterrupted(f"interrupted by signal {signal.Signals(signum).name}")
-
-    previous = signal.signal(signal.SIGTERM, handler)
+    previous = {sig: signal.signal(sig, stop) for sig in (signal.SIGTERM, signal.SIGINT)}
     try:
         yield
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)

@@ -175,6 +175,26 @@ def test_a_failed_check_writes_nothing_and_an_unwritable_out_is_one_line(tmp_pat
     assert len(err) == 2 and "out = " in err[1] and "cannot be written" in err[1]
 
 
+@pytest.mark.parametrize("sets, message", [
+    (["quench.bath.od_jet_speed_mm_s=1e9"], "quench.bath.od_jet_speed_mm_s = 1000000000.0: must be <= 50000"),
+    (['quench.htc_model="table"', "quench.htc_table={T_C=[0.0, 1000.0], h_W_m2K=[500.0, 500.0], ambient_C=900.0}"],
+     "quench.htc_table.ambient_C = 900.0: the quench medium must be colder"),
+    (["geometry.width_mm=inf"], "geometry.width_mm = inf: must be a finite number"),
+    (["quench.bath.oil_temperature_C=900"], "quench.bath.oil_temperature_C = 900.0: must be below the boiling"),
+    (["air.emissivity=1.5"], "air.emissivity = 1.5: must be <= 1"),
+    (["output.checkpoint_minutes=-1"], "output.checkpoint_minutes = -1: must be >= 0"),
+])
+def test_each_absurd_input_from_the_command_line_is_one_line_and_writes_nothing(tmp_path, capsys, sets, message):
+    """The absurd inputs of issue 20 through `quenchsim run`: exit 2, one line naming the field, the value and what
+    is allowed, and no output folder (the checks run before anything is written or meshed)."""
+    out = tmp_path / "run"
+    argv = ["run", str(CASE_A), "--condition", "1", "--out", str(out), "--quiet"]
+    assert main(argv + [arg for value in sets for arg in ("--set", value)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and message in err[0], err
+    assert not out.exists()
+
+
 def test_derived_cases_are_checked_again():
     case = load_case(CASE_A, "1")
     finer = case.refined(mesh=0.5, step=0.5)

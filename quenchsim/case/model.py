@@ -19,7 +19,8 @@ Tables of a case file and the dataclass each becomes:
 ``[[probes]]``     ``name``, ``r_mm``, ``z_mm``                                       -> :class:`Probe`
 ``[time]``         step control: ``dt_initial_s``, ``dt_min_s``, ``dt_max_s``, ``max_dT_K``, ``max_dX``,
                    ``growth``                                                        -> :class:`TimeControl`
-``[output]``       ``frames`` (number of VTK frames)                                 -> :class:`OutputSpec`
+``[output]``       ``frames`` (number of VTK frames), ``checkpoint_minutes`` (wall time between
+                   checkpoints; 0: after every step)                                 -> :class:`OutputSpec`
 ``[mechanics]``    ``enabled``, ``fixed_point_mm`` and the stress solver's options (``plasticity``, ``trip``,
                    ``newton_rtol``, ...)                                            -> :class:`MechanicsOptions`
 ``[measured]``, ``[peer]``  measured or published results of the case, for reports; not read by the run
@@ -97,6 +98,7 @@ class TimeControl:
 @dataclass(frozen=True)
 class OutputSpec:
     frames: int
+    checkpoint_minutes: float
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,7 @@ DEFAULTS: dict[str, Any] = {
             "emissivity": 0.8},
     "time": {"dt_initial_s": 0.02, "dt_min_s": 1e-3, "dt_max_s": 120.0, "max_dT_K": 20.0, "max_dX": 0.1,
              "growth": 1.5},
-    "output": {"frames": 40},
+    "output": {"frames": 40, "checkpoint_minutes": 5.0},
     "mechanics": {"enabled": True, "plasticity": True, "trip": True},
 }
 
@@ -44,7 +44,7 @@ TABLE_KEYS: dict[str, tuple[str, ...]] = {
     "quench": ("time_s", "htc_model", "bath", "htc_table", "immersion_speed_mm_s"),
     "air": ("temperature_C", "until_max_C", "time_s", "htc_model", "emissivity", "htc_table"),
     "time": ("dt_initial_s", "dt_min_s", "dt_max_s", "max_dT_K", "max_dX", "growth"),
-    "output": ("frames",),
+    "output": ("frames", "checkpoint_minutes"),
 }
 """Known keys of each table (a key not listed is an error: a misspelt key must not be ignored)."""
 
@@ -182,12 +182,14 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
     frames = o.get("frames")
     require(isinstance(frames, int) and not isinstance(frames, bool) and frames >= 2, "output.frames", frames,
             "must be an integer >= 2")
+    checkpoint_minutes = _number(o, "checkpoint_minutes", "output.checkpoint_minutes", minimum=0.0, maximum=1440.0)
     mechanics = _mechanics(data, material, process)
     probes = _probes(data, profile)
     return Case(name=name, condition=condition, path=path, data=data, material=material, profile=profile,
                 reference_state=reference_state, mesh=mesh, process=process, transfer=transfer, quench=quench,
                 air=air, time=time,
-                output=OutputSpec(frames=frames), mechanics=mechanics, probes=probes)
+                output=OutputSpec(frames=frames, checkpoint_minutes=checkpoint_minutes), mechanics=mechanics,
+                probes=probes)
 
 
 def _material(data: Mapping[str, Any], case_path: Path | None) -> str:

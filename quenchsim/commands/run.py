@@ -1,4 +1,4 @@
-"""`quenchsim run CASE.toml --condition NAME --out DIR [--mesh-size MM] [--set KEY=VALUE ...]`."""
+"""`quenchsim run CASE.toml --condition NAME --out DIR [--mesh-size MM] [--set KEY=VALUE ...] [--resume]`."""
 
 from __future__ import annotations
 
@@ -34,6 +34,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--mesh-size", type=float, help="core element size in mm (surface size scales with it)")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                         help="override any case field, e.g. --set quench.time_s=600")
+    parser.add_argument("--resume", action="store_true",
+                        help="continue the interrupted run of this case in --out from its checkpoint")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     parser.add_argument("--json", action="store_true", help="print the key results as JSON instead of a table")
 
@@ -49,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
         case = case.with_mesh_size(args.mesh_size)
     out = args.out or Path("runs") / f"{case.name}_{case.condition or 'base'}"
     logging.basicConfig(level=logging.WARNING, format="quenchsim: %(message)s")
-    result = run_case(case, out, progress=not args.quiet)
+    result = run_case(case, out, progress=not args.quiet, resume=args.resume)
     s = result.summary
     if args.json:
         print(json.dumps({"out": str(out), "status": s["status"], "probes": s["probes"], "hardness": s["hardness"],

@@ -33,6 +33,16 @@ class VtkSeries:
         self._write_pvd()
         return self.out_dir / fname
 
+    def resume(self, frames: list[tuple[float, str]]) -> None:
+        """Continue a series whose first ``frames`` were written by an interrupted run: the index is cut back to
+        them and later frame files of that run are removed (the resumed run writes them again)."""
+        self.frames = list(frames)
+        kept = {f for _, f in self.frames}
+        for path in self.out_dir.glob(f"{self.name}_[0-9][0-9][0-9][0-9].vtu"):
+            if path.name not in kept:
+                path.unlink()
+        self._write_pvd()
+
     def _write_pvd(self) -> None:
         lines = ['<?xml version="1.0"?>',
                  '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">', "  <Collection>"]

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -71,8 +72,18 @@ class _LinearSolver:
         self.refresh_after = refresh_after
         self._stale = True
         self._factor = None
+        self._factored_matrix: sp.csr_matrix | None = None
         self.factorizations = 0
         self.cg_iterations = 0
+
+    def checkpoint_state(self) -> dict[str, Any]:
+        return {"stale": self._stale, "factored_matrix": self._factored_matrix}
+
+    def restore_state(self, state: Mapping[str, Any]) -> None:
+        """Continue from :meth:`checkpoint_state` (refactorises the kept tangent: the same factor)."""
+        self._stale = bool(state["stale"])
+        self._factored_matrix = state.get("factored_matrix")
+        self._factor = None if self._factored_matrix is None else SparseCholesky(self._factored_matrix)
 
     def solve(self, K: sp.csr_matrix, b: np.ndarray, rtol: float) -> np.ndarray:
         if not self._stale:
@@ -82,7 +93,7 @@ class _LinearSolver:
             self._stale = its > self.refresh_after  # the next solve refactorises
             if done:
                 return x
-        self._factor = SparseCholesky(K)
+        self._factor, self._factored_matrix = SparseCholesky(K), K
         self._stale = False
         self.factorizations += 1
         return self._factor.solve(b)
@@ -260,6 +271,30 @@ class MechanicsSolver:
         st.eq_plastic = eq_plastic + update.d_eq_plastic
         st.stress = update.stress
         self._started = True
+
+    # ------------------------------------------------------------------ checkpoints
+    def checkpoint_state(self) -> dict[str, Any]:
+        """Everything the next steps depend on: the committed material-point state (free, plastic and TRIP
+        strains, hardening variable, stress), the displacement, the predictor and the linear solver's factor."""
+        st = self._state
+        return {"points": {"free": st.free, "plastic": st.plastic, "trip": st.trip, "eq_plastic": st.eq_plastic,
+                           "stress": st.stress},
+                "started": self._started, "displacement_m": self.displacement_m,
+                "last_increment": self._last_increment, "last_load": self._last_load,
+                "linear": self.linear_solver.checkpoint_state()}
+
+    def restore_state(self, state: Mapping[str, Any]) -> None:
+        """Continue from :meth:`checkpoint_state`."""
+        points = state["points"]
+        if np.shape(points["free"]) != self._state.free.shape:
+            raise ValueError(f"checkpoint state of shape {np.shape(points['free'])} for a mesh of {self._state.free.shape}")
+        self._state = _State(**{name: np.array(points[name]) for name in ("free", "plastic", "trip", "eq_plastic",
+                                                                          "stress")})
+        self._started = bool(state["started"])
+        self.displacement_m = np.array(state["displacement_m"])
+        self._last_increment = None if state.get("last_increment") is None else np.array(state["last_increment"])
+        self._last_load = float(state["last_load"])
+        self.linear_solver.restore_state(state["linear"])
 
     # ------------------------------------------------------------------ results
     @property

@@ -18,4 +18,7 @@ RESIDUAL_TRAVERSE_CSV = "residual_hoop_traverse.csv"
 OUTLINE_CSV = "outline.csv"
 """The section outline before and after: ``r_before_mm,z_before_mm,r_after_mm,z_after_mm``."""
 SUMMARY_JSON = "summary.json"
-"""Machine-readable results and the run's status (``ok`` / ``failed``)."""
+"""Machine-readable results and the run's status (``ok`` / ``failed`` / ``interrupted``)."""
+CHECKPOINT_NPZ = "checkpoint.npz"
+"""The whole state of an unfinished run (stage ends, every ``output.checkpoint_minutes``, on SIGTERM/Ctrl-C), from
+which ``quenchsim run ... --resume`` continues; removed when the run completes."""

@@ -15,6 +15,8 @@ iterations, keeps a factorisation for the rest of the run (steps only grow, exce
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
@@ -31,8 +33,19 @@ class StepLinearSolver:
         self.max_cg = max_cg
         self.use_factor = False
         self._factor: SparseCholesky | None = None
+        self._factored_matrix: sp.csr_matrix | None = None
         self.factorizations = 0
         self.cg_iterations = 0
+
+    def checkpoint_state(self) -> dict[str, Any]:
+        """What the next solves depend on: the mode and the matrix of the kept factorisation."""
+        return {"use_factor": self.use_factor, "factored_matrix": self._factored_matrix}
+
+    def restore_state(self, state: dict[str, Any]) -> None:
+        """Continue from :meth:`checkpoint_state` (refactorises the kept matrix: the same factor)."""
+        self.use_factor = bool(state["use_factor"])
+        self._factored_matrix = state.get("factored_matrix")
+        self._factor = None if self._factored_matrix is None else SparseCholesky(self._factored_matrix)
 
     def solve(self, A: sp.csr_matrix, b: np.ndarray, x0: np.ndarray) -> np.ndarray:
         target = self.rtol * norm(b)
@@ -54,13 +67,14 @@ class StepLinearSolver:
         """Refactorise (sparse Cholesky) and solve; sparse LU with pivoting if the matrix is not positive
         definite."""
         try:
-            self._factor = SparseCholesky(A)
+            self._factor, self._factored_matrix = SparseCholesky(A), A
         except np.linalg.LinAlgError:  # not positive definite
-            self._factor = None
+            self._factor = self._factored_matrix = None
             return spla.spsolve(A.tocsc(), b)
         self.factorizations += 1
         x = self._factor.solve(b)
         if not norm(b - A @ x) <= 1e3 * self.rtol * norm(b):
-            self._factor = None  # an inaccurate factor (ill-conditioned step matrix): do not reuse it
+            # an inaccurate factor (ill-conditioned step matrix): do not reuse it
+            self._factor = self._factored_matrix = None
             return spla.spsolve(A.tocsc(), b)
         return x

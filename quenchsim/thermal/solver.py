@@ -195,3 +195,16 @@ class ThermalSolver:
 
     def fractions(self) -> dict[str, np.ndarray]:
         return self._fractions(self.phase_state)
+
+    def checkpoint_state(self) -> dict[str, Any]:
+        """The committed temperatures, time, last rate (the next step's first iterate) and linear-solver state;
+        the phase state is the phase model's (``phase_state``)."""
+        return {"T": self.T, "T_qp": self.T_qp, "time_s": self.time_s, "rate_K_s": self._rate_K_s,
+                "linear": self.linear.checkpoint_state()}
+
+    def restore_state(self, state: dict[str, Any], phase_state: Any) -> None:
+        """Continue from :meth:`checkpoint_state` and a phase state."""
+        self.T, self.T_qp, self.time_s = np.array(state["T"]), np.array(state["T_qp"]), float(state["time_s"])
+        self._rate_K_s = None if state.get("rate_K_s") is None else np.array(state["rate_K_s"])
+        self.linear.restore_state(state["linear"])
+        self.phase_state = phase_state

@@ -88,9 +88,9 @@ def test_free_run_cli(capsys, pulses_csv, tmp_path):
     (["grease-life", "--grease", "urea", "--base-oil", "pao", "--dm", "30", "--speed", "1000",
       "--outer-ring-rotation", "--temperature", "100", "--load-ratio", "0.02"], "--ball-diameter-mm"),
     (["kinematics", "--bearing", "6204x"], "bearing"),
-    (["kinematics", "--pitch-diameter-mm", "5", "--ball-diameter-mm", "6", "--balls", "8"], "pitch_diameter_m"),
+    (["kinematics", "--pitch-diameter-mm", "5", "--ball-diameter-mm", "6", "--balls", "8"], "--pitch-diameter-mm"),
     (["hertz", "point", "--load=-5", "--rx1-mm", "5", "--ry1-mm", "5", "--rx2-mm", "9", "--ry2-mm", "9"],
-     "load_N"),
+     "--load"),
     (["hertz", "line", "--load", "5", "--r1-mm", "5", "--r2-mm", "9"], "--length-mm"),
     (["hertz", "ball-race", "--bearing", "6204", "--inner-groove-ratio", "0.52"], "--outer-groove-ratio"),
 ])
@@ -108,7 +108,7 @@ def test_free_run_bad_input(capsys, tmp_path, pulses_csv):
     cases = [
         ([str(few), "--inertia", "1e-3"], "at least 5"),
         ([str(back), "--inertia", "1e-3"], "increase strictly"),
-        ([str(path), "--inertia=-1e-3"], "inertia_kg_m2"),
+        ([str(path), "--inertia=-1e-3"], "--inertia = -0.001"),
         ([str(path), "--rotor-inertia", "1e-3", "--bearing", "7010C"], "unknown bearing"),
         ([str(path), "--rotor-inertia", "1e-3"], "--rotor-inertia"),
         ([str(path), "--inertia", "1e-3", "--method", "fft"], "method"),

@@ -12,6 +12,10 @@ from pathlib import Path
 from quenchsim.bearings.big_end import load_case, plot_run, run_statistics, simulate, write_csv
 from quenchsim.bearings.big_end.case import MODES
 from quenchsim.bearings.big_end.simulate import DEFAULT_INTEGRATOR, INTEGRATORS
+from quenchsim.bearings.commands.ranges import Range
+
+RANGES = {"clearance_set": Range(1, 1000, integer=True), "revolutions": Range(0.0, 1e6, low_open=True)}
+"""Physical ranges of the numeric options (checked before any work, see :mod:`quenchsim.bearings.commands.ranges`)."""
 
 
 def configure(parser: argparse.ArgumentParser) -> None:

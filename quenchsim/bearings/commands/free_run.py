@@ -17,7 +17,15 @@ import pathlib
 
 from quenchsim.bearings import free_run as fr
 from quenchsim.bearings.commands.kinematics import add_geometry_arguments, geometry_from_args
+from quenchsim.bearings.commands.ranges import GEOMETRY, Range
 from quenchsim.errors import InputError
+
+INERTIA = Range(0.0, 1e6, low_open=True, unit="kg m^2")
+RANGES = {**GEOMETRY, "clock_hz": Range(0.0, 1e12, low_open=True, unit="Hz"), "inertia": INERTIA,
+          "rotor_inertia": INERTIA, "bearings_count": Range(1, 1000, integer=True),
+          "cage_inertia": Range(0.0, 1e6, unit="kg m^2"),
+          "alpha_percent": Range(0.0, 100.0, low_open=True, high_open=True, unit="%")}
+"""Physical ranges of the numeric options (checked before any work, see :mod:`quenchsim.bearings.commands.ranges`)."""
 
 
 def configure(parser: argparse.ArgumentParser) -> None:

@@ -16,6 +16,7 @@ from quenchsim.bearings.gas_journal.orbit import OrbitProgress, mass_from_parame
 from quenchsim.bearings.gas_journal.reynolds import METHODS
 from quenchsim.bearings.gas_journal.stability import MASS_PARAMETER_RANGE, critical_mass_parameter
 from quenchsim.bearings.gas_journal.static import static_characteristics
+from quenchsim.bearings.commands.ranges import Range
 from quenchsim.errors import InputError, require
 
 ACTIONS = ("static", "orbit", "stability", "bench")
@@ -23,6 +24,24 @@ ACTIONS = ("static", "orbit", "stability", "bench")
 # the grooved rotor A-1 at level 3 takes ~9 s, its search 9-10 orbits)
 STABILITY_MAX_TIME_S = 110.0
 STABILITY_MAX_ORBITS = 24
+POSITIVE = Range(0.0, low_open=True)
+LEVEL = Range(1, 10, integer=True)
+"""Grid levels: level 10 is 5121 x 1025 nodes, beyond it a solve outgrows the memory of a workstation."""
+RANGES = {"bearing_number": Range(0.0, 1e6), "eccentricity": Range(0.0, 1.0, high_open=True),
+          "displacement_angle": Range(-360.0, 360.0, unit="deg"), "ld": Range(0.0, 20.0, low_open=True),
+          "grooves": Range(1, 1000, integer=True),
+          "groove_angle": Range(0.0, 90.0, low_open=True, high_open=True, unit="deg"),
+          "groove_depth": Range(0.0, 100.0, low_open=True),
+          "groove_width_ratio": Range(0.0, 1.0, low_open=True, high_open=True),
+          "groove_length_ratio": Range(0.0, 1.0, low_open=True), "level": LEVEL, "levels": LEVEL,
+          "sor_omega": Range(0.0, 2.0, low_open=True, high_open=True), "load": Range(-1e6, 1e6),
+          "mass": POSITIVE, "mass_parameter": POSITIVE, "duration": Range(0.0, 1e6, low_open=True),
+          "start_eccentricity": Range(0.0, 1.0, low_open=True, high_open=True), "mass_range": POSITIVE,
+          "rel_tol": Range(0.0, 10.0, low_open=True), "max_time_s": POSITIVE,
+          "max_iterations": Range(1, 10000, integer=True), "budget": POSITIVE}
+"""Physical ranges of the numeric options (checked before any work, see :mod:`quenchsim.bearings.commands.ranges`):
+an eccentricity ratio below 1 (the journal inside its clearance), groove ratios within the land, SOR's
+over-relaxation in (0, 2)."""
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -129,6 +148,8 @@ def _finite(value: float | None) -> float | None:
 
 
 def _stability(args: argparse.Namespace) -> dict:
+    low, high = args.mass_range
+    require(low < high, "--mass-range", args.mass_range, "LO must be below HI")
     res = critical_mass_parameter(_bearing(args), _single(args), level=args.level or 3, load=args.load or 0.0,
                                   start_eccentricity=args.start_eccentricity, duration=args.duration or 40.0,
                                   rel_tol=args.rel_tol, max_trials=args.max_iterations,

@@ -10,7 +10,16 @@ import argparse
 import math
 
 from quenchsim.bearings import grease, kinematics as kin
+from quenchsim.bearings.commands.ranges import CONTACT_ANGLE_DEG, DIAMETER_MM, Range
 from quenchsim.errors import InputError
+
+RANGES = {"dm": DIAMETER_MM, "ball_diameter_mm": DIAMETER_MM, "contact_angle_deg": CONTACT_ANGLE_DEG,
+          "speed": Range(0.0, 1e6, low_open=True, unit="rpm"),
+          # the grease model's own bounds (quenchsim.bearings.grease.grease_life): no grease survives above 250 C
+          "temperature": Range(-60.0, 250.0, unit="C"),
+          "load_ratio": Range(0.0, 1.0, high_open=True),
+          "weibull_slope": Range(0.0, 100.0, low_open=True)}
+"""Physical ranges of the numeric options (checked before any work, see :mod:`quenchsim.bearings.commands.ranges`)."""
 
 
 def configure(parser: argparse.ArgumentParser) -> None:

@@ -17,8 +17,21 @@ from dataclasses import asdict
 
 from quenchsim.bearings import hertz
 from quenchsim.bearings.commands.kinematics import add_geometry_arguments, geometry_from_args
+from quenchsim.bearings.commands.ranges import GEOMETRY, Range
 from quenchsim.bearings.kinematics import steel_properties
 from quenchsim.errors import InputError
+
+RADIUS_MM = Range(-1e9, 1e9, unit="mm (concave < 0)", nonzero=True)
+RANGES = {**GEOMETRY, "load": Range(0.0, unit="N"),
+          **{f"{r}_mm": RADIUS_MM for r in ("rx1", "ry1", "rx2", "ry2", "r1", "r2")},
+          "length_mm": Range(0.0, 1e4, low_open=True, unit="mm"),
+          # the stiffest solid (diamond) has E ~ 1.2e3 GPa; an isotropic solid has -1 < nu <= 0.5
+          "E1_GPa": Range(0.0, 1500.0, low_open=True, unit="GPa"),
+          "E2_GPa": Range(0.0, 1500.0, low_open=True, unit="GPa"),
+          "nu1": Range(-1.0, 0.5, low_open=True), "nu2": Range(-1.0, 0.5, low_open=True),
+          # a groove radius must exceed the ball radius (conformity f = r / D > 0.5)
+          "inner_groove_ratio": Range(0.5, 10.0, low_open=True), "outer_groove_ratio": Range(0.5, 10.0, low_open=True)}
+"""Physical ranges of the numeric options (checked before any work, see :mod:`quenchsim.bearings.commands.ranges`)."""
 
 
 def configure(parser: argparse.ArgumentParser) -> None:

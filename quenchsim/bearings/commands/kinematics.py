@@ -13,7 +13,11 @@ import math
 from dataclasses import asdict
 
 from quenchsim.bearings import kinematics as kin
-from quenchsim.errors import InputError
+from quenchsim.bearings.commands.ranges import GEOMETRY, SPEED_RPM
+from quenchsim.errors import InputError, require
+
+RANGES = {**GEOMETRY, "inner_rpm": SPEED_RPM, "outer_rpm": SPEED_RPM, "measured_cage_rpm": SPEED_RPM}
+"""Physical ranges of the numeric options (checked before any work, see :mod:`quenchsim.bearings.commands.ranges`)."""
 
 
 def add_geometry_arguments(parser: argparse.ArgumentParser, required: bool = True) -> None:
@@ -48,6 +52,11 @@ def geometry_from_args(args: argparse.Namespace) -> tuple[kin.BearingGeometry | 
     for name, v in zip(("--pitch-diameter-mm", "--ball-diameter-mm", "--balls"), explicit):
         if v is None:
             raise InputError(name, None, "required with explicit bearing dimensions")
+    require(args.ball_diameter_mm < args.pitch_diameter_mm, "--ball-diameter-mm", args.ball_diameter_mm,
+            f"must be < --pitch-diameter-mm = {args.pitch_diameter_mm:g} mm")
+    require(args.balls * args.ball_diameter_mm < math.pi * args.pitch_diameter_mm, "--balls", args.balls,
+            f"must fit on the pitch circle: balls x ball diameter < pi x pitch diameter = "
+            f"{math.pi * args.pitch_diameter_mm:.4g} mm")
     angle = math.radians(args.contact_angle_deg or 0.0)
     return kin.BearingGeometry(args.pitch_diameter_mm * 1e-3, args.ball_diameter_mm * 1e-3, args.balls, angle), None
 
