@@ -55,7 +55,17 @@ class RunResult:
 def run(case: Case, out_dir: str | Path, progress: bool = True, resume: bool = False) -> RunResult:
     """Run ``case`` and write everything into ``out_dir`` (the output contract: :mod:`quenchsim.results`);
     ``resume`` continues the run of the same case in ``out_dir`` from its checkpoint."""
-    return QuenchRun(case, Path(out_dir), progress=progress, resume=resume).run()
+    try:
+        quench_run = QuenchRun(case, Path(out_dir), progress=progress, resume=resume)
+    except KeyboardInterrupt:
+        # Ctrl-C while meshing or building the solvers: nothing was computed; a fresh run's folder says so (a
+        # resumed run keeps its earlier summary and checkpoint, both still valid)
+        if not resume and Path(out_dir).is_dir():
+            RunWriter(out_dir).summary({"case": case.name, "condition": case.condition, "status": "interrupted",
+                                        "error": "interrupted during setup (meshing, boundary, solvers)",
+                                        "stopped_at_s": 0.0})
+        raise RunInterrupted(f"run interrupted during setup, before the first step ({out_dir})") from None
+    return quench_run.run()
 
 
 # -- section ------------------------------------------------------------------------------------
@@ -295,6 +305,12 @@ class QuenchRun:
         probe_T = {n: np.array([row[i] for row in self.probe_rows]) for i, n in enumerate(self.probe_names)}
         try:
             summary = self.summary(time_arr, probe_T, wall0)
+        except KeyboardInterrupt:  # the stages are done and checkpointed: say so, and how to finish
+            self.writer.summary({"case": case.name, "condition": case.condition, "status": "interrupted",
+                                 "error": "interrupted during post-processing (finish it with --resume)",
+                                 "stopped_at_s": self.thermal.time_s})
+            raise RunInterrupted(f"run interrupted during post-processing; finish it with --resume ({self.out})") \
+                from None
         except Exception as exc:  # keep what was computed: record the failure, then re-raise
             self.writer.summary({"case": case.name, "condition": case.condition, "status": "failed",
                                  "error": f"post-processing: {exc!r}"})

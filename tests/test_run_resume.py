@@ -164,3 +164,38 @@ def test_resume_refuses_another_case_and_a_folder_without_checkpoint(tmp_path, m
     # how often to checkpoint changes no result: resuming with another interval is the same case
     assert main(["run", str(case_file), "--out", str(tmp_path / "run"), "--resume", "--quiet",
                  "--set", "output.checkpoint_minutes=1"]) == 0
+
+
+def test_ctrl_c_while_meshing_leaves_an_interrupted_summary(tmp_path, monkeypatch):
+    import quenchsim.pipeline as pipeline
+
+    def interrupted_meshing(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(pipeline, "build_section", interrupted_meshing)
+    with pytest.raises(RunInterrupted, match="during setup"):
+        qs.run(case_from_dict(plastic_ring()), tmp_path / "run", progress=False)
+    stopped = json.loads((tmp_path / "run" / files.SUMMARY_JSON).read_text())
+    assert stopped["status"] == "interrupted" and stopped["stopped_at_s"] == 0.0
+    assert "setup" in stopped["error"]
+
+
+def test_ctrl_c_while_post_processing_is_finished_by_resume(tmp_path, monkeypatch):
+    import quenchsim.pipeline as pipeline
+
+    case = case_from_dict(plastic_ring())
+    reference = qs.run(case, tmp_path / "reference", progress=False)
+    summary = pipeline.QuenchRun.summary
+
+    def interrupted_summary(self, *args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(pipeline.QuenchRun, "summary", interrupted_summary)
+    with pytest.raises(RunInterrupted, match="post-processing"):
+        qs.run(case, tmp_path / "run", progress=False)
+    monkeypatch.setattr(pipeline.QuenchRun, "summary", summary)
+    stopped = json.loads((tmp_path / "run" / files.SUMMARY_JSON).read_text())
+    assert stopped["status"] == "interrupted" and "post-processing" in stopped["error"]
+    resumed = qs.run(case, tmp_path / "run", progress=False, resume=True)
+    assert_same_summary(reference.summary, resumed.summary)
+    assert_same_files(tmp_path / "reference", tmp_path / "run")
