@@ -1,6 +1,7 @@
 """The quench starts from the austenitised (hot, larger) section whether or not the stress is solved."""
 
 import numpy as np
+import pytest
 from test_simulation_final_step import warm_ring
 
 from quenchsim.case import case_from_dict
@@ -47,3 +48,22 @@ def test_outputs_are_on_the_final_part_at_room_temperature(tmp_path):
     last = meshio.read(sorted(tmp_path.glob("results_*.vtu"))[-1])
     np.testing.assert_allclose(last.points[:, :2].T, run.before_mesh.p, atol=1e-15)
     np.testing.assert_allclose((last.points[:, :2] + last.point_data["displacement_m"][:, :2]).T, final, atol=1e-15)
+
+
+def test_the_core_of_a_solid_bar_is_its_axis(tmp_path):
+    """A solid SUJ2 bar (20 mm, oil): the summary's core hardness is the hardness on the axis at mid-length
+    (the start of the "bore" traverse, which for a solid section runs from the axis), and there is no bore-side
+    HRC58 depth (no bore surface to measure it from)."""
+    from pathlib import Path
+
+    import quenchsim as qs
+
+    case_file = Path(__file__).resolve().parents[1] / "validation" / "materials" / "SUJ2_rounds" / "round_bar_oil.toml"
+    case = qs.load_case(case_file, overrides={"geometry.outer_diameter_mm": 20.0, "geometry.width_mm": 40.0,
+                                              "mesh.size_mm": 4.0, "mesh.surface_size_mm": 1.0})
+    summary = qs.run(case, tmp_path, progress=False).summary
+    traverse = qs.load_results(tmp_path).hardness_traverse
+    assert summary["hardness"]["depth_mm"]["HRC58_bore_mid"] is None
+    assert summary["hardness"]["core_HRC"] == pytest.approx(traverse["HRC_from_bore"][0], abs=0.05)
+    # the axis, not mid-radius: the traverse from the axis reaches the core value at its start only
+    assert traverse["depth_mm"][0] < 0.01

@@ -77,12 +77,14 @@ def hardness_summary(profile: Profile, p1: skfem.Basis, final: FinalSection, hrc
                      ) -> tuple[dict[str, Any], dict[str, tuple[np.ndarray, np.ndarray]]]:
     """The summary's ``hardness`` table and the two mid-width traverses {"bore": ..., "od": ...}: surface
     hardness per named segment at its middle (``profile`` and ``p1`` of the run's mesh), depths, traverses
-    and the core on the final part."""
+    and the core on the final part. The core is mid-wall of a ring and the axis of a solid section (whose
+    "bore" traverse runs from the axis and has no surface to measure a depth from: its depth is None)."""
+    solid = any(seg.name == "axis" for seg in profile.segments)
     depth, traverse = {}, {}
     for side in ("bore", "od"):
         d, h = hardness_traverse(final, hrc_nodal, side)
         traverse[side] = (d, h)
-        depth[f"HRC58_{side}_mid"] = depth_below(d, h, HRC_THRESHOLD)
+        depth[f"HRC58_{side}_mid"] = None if solid and side == "bore" else depth_below(d, h, HRC_THRESHOLD)
     surface = {}
     for seg in profile.segments:
         if seg.name == "axis" or seg.name.startswith(("chamfer", "radius")):
@@ -92,7 +94,8 @@ def hardness_summary(profile: Profile, p1: skfem.Basis, final: FinalSection, hrc
         pt = mid + 1e-6 * np.array([-tangent[1], tangent[0]])   # left of a counter-clockwise outline = inside
         surface[f"{seg.name}_mid"] = float((p1.probes(pt.reshape(2, 1)) @ hrc_nodal)[0])
     z_mid, r_bore, r_od = final.mid_width()
-    core = float((final.p1.probes(np.array([[0.5 * (r_bore + r_od)], [z_mid]])) @ hrc_nodal)[0])
+    r_core = r_bore + 1e-6 if solid else 0.5 * (r_bore + r_od)
+    core = float((final.p1.probes(np.array([[r_core], [z_mid]])) @ hrc_nodal)[0])
     table = {"depth_mm": depth, "surface_HRC": surface, "core_HRC": core, "threshold_HRC": HRC_THRESHOLD,
              "through_hardened": bool(np.nanmin(hrc_nodal) >= HRC_THRESHOLD)}
     return table, traverse
