@@ -30,3 +30,24 @@ def test_a_baseline_is_required_exactly_once():
     for extra in ([], ["--baseline-python", sys.executable, "--baseline-commit", "HEAD"]):
         proc = subprocess.run([sys.executable, "-m", "quenchsim.cli", "bench", *extra], capture_output=True, text=True)
         assert proc.returncode == 2 and "--baseline" in proc.stderr
+
+
+def test_a_reference_without_summary_is_refused_before_any_run(tmp_path):
+    proc = subprocess.run([sys.executable, "-m", "quenchsim.cli", "bench", "--baseline-python", sys.executable,
+                           "--reference", str(tmp_path), "--work", str(tmp_path / "work")],
+                          capture_output=True, text=True)
+    assert proc.returncode == 2 and "--reference" in proc.stderr
+    assert not (tmp_path / "work").exists() or not any((tmp_path / "work").iterdir())
+
+
+def test_report_states_cpu_ratio_overrides_and_differences_from_the_reference():
+    diffs = {"dimension_mm": 0.0015, "t500_s": 0.3, "depth_mm": 0.2, "hoop_MPa": 2.3}
+    row = {"mesh_factor": 1.0, "dofs": 4941, "steps": 725, "baseline_steps": 725, "baseline_wall_s": 60.0,
+           "current_wall_s": 40.0, "speedup": 1.5, "baseline_cpu_s": 50.0, "current_cpu_s": 25.0, "cpu_speedup": 2.0,
+           "baseline_loop_us_per_dof_step": 20.0, "current_loop_us_per_dof_step": 10.0, "largest_differences": diffs,
+           "from_reference": {"baseline": diffs, "current": dict(diffs, hoop_MPa=1.0)}}
+    record = {"case": "c.toml", "condition": "1", "machine": "m", "repeat": 1, "load_before": 1.0, "load_after": 1.0,
+              "baseline": "b", "current": "c", "rows": [row], "overrides": ["time.max_dX=0.01"], "reference": "runs/fine"}
+    text = bench.markdown(record)
+    assert "**2.00**" in text and "`time.max_dX=0.01`" in text and "725 / 725" in text
+    assert "`runs/fine`" in text and "hoop 1 MPa" in text

@@ -9,9 +9,13 @@ command checks out into a git worktree and installs into its own venv (``--basel
     quenchsim bench --baseline-commit cc353be                      # ring A, condition 1, default mesh, 3 x 2 runs
     quenchsim bench --baseline-python /tmp/venv_old/bin/python --mesh 2 1 0.5 --repeat 1
     quenchsim bench --baseline-commit cc353be --profile runs/bench/prof --out reports/bench.md
+    quenchsim bench --baseline-commit cc353be --set time.max_dX=0.01 --reference runs/ring_a_fine
 
-Per mesh factor it prints the median wall time of each side, their ratio, the time per DOF per step, and
-the largest differences of the results (dimension change, probe t500, HRC58 depth, residual hoop stress).
+Per mesh factor it prints the median wall and CPU time of each side, their ratios, the time per DOF per step,
+and the largest differences of the results (dimension change, probe t500, HRC58 depth, residual hoop stress)
+between the sides and, with ``--reference`` (a run folder of the same case at converged settings, e.g. steps
+refined until the results stop moving), of each side from the reference: a speed-up counts at equal accuracy.
+``--set`` options go to both sides' runs (e.g. the same step control for both).
 """
 
 from __future__ import annotations
@@ -21,6 +25,7 @@ import json
 import os
 import platform
 import pstats
+import resource
 import statistics
 import subprocess
 import sys
@@ -51,6 +56,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--profile", action="store_true", help="one more run per side under cProfile at the "
                         "first mesh factor; the top functions go into the report")
     parser.add_argument("--out", type=Path, help="write the Markdown report here (and its JSON beside it)")
+    parser.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                        help="case override passed to both sides' runs (repeatable), e.g. time.max_dX=0.01")
+    parser.add_argument("--reference", type=Path, help="run folder of the same case at converged settings: each "
+                        "side's results are compared with its summary.json")
 
 
 # -- sides -------------------------------------------------------------------------------------------
@@ -104,22 +113,31 @@ def results_of(summary: dict[str, Any]) -> dict[str, float]:
     return out
 
 
+def children_cpu_s() -> float:
+    """User + system CPU time of the finished child processes so far."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def run_once(python: str, env: dict[str, str], root: Path, case: str, condition: str, factor: float, out: Path,
-             profile: Path | None = None) -> dict[str, Any]:
-    """One ``quenchsim run`` in its own process; its wall time, the solver's record and the results."""
+             profile: Path | None = None, overrides: list[str] | tuple[str, ...] = ()) -> dict[str, Any]:
+    """One ``quenchsim run`` in its own process; its wall and CPU time, the solver's record and the results.
+
+    The CPU time (user + system of the process) is less disturbed than the wall time by other work on a shared
+    machine: the process waiting for a core does not count."""
     case_path = root / case
     prefix = [python] + (["-m", "cProfile", "-o", str(profile)] if profile else []) + ["-m", "quenchsim.cli"]
     cmd = prefix + ["run", str(case_path), "--condition", condition, "--out", str(out), "--quiet",
-                    *mesh_overrides(case_path, factor)]
-    t0 = time.perf_counter()
+                    *mesh_overrides(case_path, factor), *(a for o in overrides for a in ("--set", o))]
+    cpu0, t0 = children_cpu_s(), time.perf_counter()
     proc = subprocess.run(cmd, env=env, capture_output=True, text=True, cwd=root)
-    wall = time.perf_counter() - t0
+    wall, cpu = time.perf_counter() - t0, children_cpu_s() - cpu0
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr[-2000:]}")
     summary = json.loads((out / "summary.json").read_text())
     solver = summary["solver"]
     loop = sum(solver["stage_time_s"].get(k, 0.0) for k in STAGES)
-    return {"wall_s": wall, "loop_s": loop, "steps": solver["steps"], "dofs": solver["dofs"],
+    return {"wall_s": wall, "cpu_s": cpu, "loop_s": loop, "steps": solver["steps"], "dofs": solver["dofs"],
             "loop_us_per_dof_step": 1e6 * loop / (solver["dofs"] * solver["steps"]),
             "wall_us_per_dof_step": 1e6 * wall / (solver["dofs"] * solver["steps"]),
             "stage_time_s": solver["stage_time_s"], "results": results_of(summary)}
@@ -152,15 +170,22 @@ def markdown(record: dict[str, Any]) -> str:
           "(baseline, this code, baseline, ...), each a separate `quenchsim run` process; medians. Other load on "
           f"the machine: 1-minute load average {record['load_before']:.1f} before and {record['load_after']:.1f} "
           "after the benchmark.", "",
-          f"Baseline: `{record['baseline']}`; this code: `{record['current']}`.", "",
-          "| mesh factor | DOFs | steps | baseline wall s | this code wall s | speed-up (ratio) | baseline loop us/DOF/step "
-          "| this code loop us/DOF/step | largest result differences |", "|---|---|---|---|---|---|---|---|---|"]
+          f"Baseline: `{record['baseline']}`; this code: `{record['current']}`."
+          + (f" Case overrides for both sides: `{' '.join(record['overrides'])}`." if record.get("overrides") else ""), "",
+          "| mesh factor | DOFs | steps (baseline / this code) | baseline wall s | this code wall s | speed-up (wall) "
+          "| baseline CPU s | this code CPU s | speed-up (CPU) | baseline loop us/DOF/step | this code loop us/DOF/step "
+          "| largest result differences between the sides |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for row in record["rows"]:
-        diffs = row["largest_differences"]
-        md.append(f"| {row['mesh_factor']:g} | {row['dofs']} | {row['steps']} | {row['baseline_wall_s']:.1f} | "
-                  f"{row['current_wall_s']:.1f} | **{row['speedup']:.2f}** | {row['baseline_loop_us_per_dof_step']:.2f} | "
-                  f"{row['current_loop_us_per_dof_step']:.2f} | dimension {diffs['dimension_mm']:.2g} mm, t500 "
-                  f"{diffs['t500_s']:.2g} s, HRC58 depth {diffs['depth_mm']:.2g} mm, hoop {diffs['hoop_MPa']:.2g} MPa |")
+        md.append(f"| {row['mesh_factor']:g} | {row['dofs']} | {row['baseline_steps']} / {row['steps']} | "
+                  f"{row['baseline_wall_s']:.1f} | {row['current_wall_s']:.1f} | **{row['speedup']:.2f}** | "
+                  f"{row['baseline_cpu_s']:.1f} | {row['current_cpu_s']:.1f} | **{row['cpu_speedup']:.2f}** | "
+                  f"{row['baseline_loop_us_per_dof_step']:.2f} | {row['current_loop_us_per_dof_step']:.2f} | "
+                  f"{_differences_text(row['largest_differences'])} |")
+    if record.get("reference"):
+        md += ["", f"Largest differences from the reference run `{record['reference']}`:", "",
+               "| mesh factor | baseline | this code |", "|---|---|---|"]
+        md += [f"| {row['mesh_factor']:g} | {_differences_text(row['from_reference']['baseline'])} | "
+               f"{_differences_text(row['from_reference']['current'])} |" for row in record["rows"]]
     if len(record["rows"]) > 1:
         for side in ("baseline", "current"):
             per = [r[f"{side}_loop_us_per_dof_step"] for r in record["rows"]]
@@ -175,6 +200,11 @@ def markdown(record: dict[str, Any]) -> str:
     return "\n".join(md) + "\n"
 
 
+def _differences_text(diffs: dict[str, float]) -> str:
+    return (f"dimension {diffs['dimension_mm']:.2g} mm, t500 {diffs['t500_s']:.2g} s, HRC58 depth "
+            f"{diffs['depth_mm']:.2g} mm, hoop {diffs['hoop_MPa']:.2g} MPa")
+
+
 def largest_differences(runs_old: list[dict[str, Any]], runs_new: list[dict[str, Any]]) -> dict[str, float]:
     diff = compare(runs_old[0]["results"], runs_new[0]["results"])
 
@@ -187,11 +217,18 @@ def largest_differences(runs_old: list[dict[str, Any]], runs_new: list[dict[str,
 
 def run(args: argparse.Namespace) -> int:
     from quenchsim.errors import InputError
+    from quenchsim.results.reader import read_summary
 
     if (args.baseline_python is None) == (args.baseline_commit is None):
         raise InputError("--baseline-python/--baseline-commit", None, "give exactly one of them")
     if args.repeat < 1:
         raise InputError("--repeat", args.repeat, "must be >= 1")
+    reference = None
+    if args.reference is not None:
+        summary = read_summary(args.reference)
+        if summary is None:
+            raise InputError("--reference", str(args.reference), "must be a run folder with a summary.json")
+        reference = {"results": results_of(summary)}
     work = args.work.resolve()
     work.mkdir(parents=True, exist_ok=True)
     old_python = str(args.baseline_python or baseline_from_commit(args.baseline_commit, work))
@@ -202,31 +239,40 @@ def run(args: argparse.Namespace) -> int:
     record: dict[str, Any] = {"case": args.case, "condition": args.condition, "repeat": args.repeat,
                               "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
                               "baseline": f"{old_root} ({old_python})", "current": f"{new_root} ({sys.executable})",
-                              "load_before": os.getloadavg()[0], "rows": []}
+                              "load_before": os.getloadavg()[0], "rows": [], "overrides": args.overrides,
+                              "reference": str(args.reference) if reference else None}
     for factor in args.mesh:
         runs: dict[str, list[dict[str, Any]]] = {"baseline": [], "current": []}
         for rep in range(args.repeat):
             for side, (python, env, root) in sides.items():
-                res = run_once(python, env, root, args.case, args.condition, factor, work / f"{side}_m{factor:g}_{rep}")
+                res = run_once(python, env, root, args.case, args.condition, factor, work / f"{side}_m{factor:g}_{rep}",
+                               overrides=args.overrides)
                 runs[side].append(res)
-                print(f"mesh x{factor:g} run {rep + 1}/{args.repeat} {side}: {res['wall_s']:.1f} s wall, "
-                      f"{res['loop_us_per_dof_step']:.2f} us/DOF/step in the loop", flush=True)
+                print(f"mesh x{factor:g} run {rep + 1}/{args.repeat} {side}: {res['wall_s']:.1f} s wall, {res['cpu_s']:.1f} s CPU, "
+                      f"{res['steps']} steps, {res['loop_us_per_dof_step']:.2f} us/DOF/step in the loop", flush=True)
         old_wall, new_wall = median_of(runs["baseline"], "wall_s"), median_of(runs["current"], "wall_s")
+        old_cpu, new_cpu = median_of(runs["baseline"], "cpu_s"), median_of(runs["current"], "cpu_s")
         row = {"mesh_factor": factor, "dofs": runs["current"][0]["dofs"], "steps": runs["current"][0]["steps"],
+               "baseline_steps": runs["baseline"][0]["steps"],
                "baseline_wall_s": old_wall, "current_wall_s": new_wall, "speedup": old_wall / new_wall,
+               "baseline_cpu_s": old_cpu, "current_cpu_s": new_cpu, "cpu_speedup": old_cpu / new_cpu,
                **{f"{s}_loop_us_per_dof_step": median_of(runs[s], "loop_us_per_dof_step") for s in runs},
                **{f"{s}_loop_s": median_of(runs[s], "loop_s") for s in runs},
                "largest_differences": largest_differences(runs["baseline"], runs["current"]),
                "differences": compare(runs["baseline"][0]["results"], runs["current"][0]["results"]),
                "runs": runs}
+        if reference:
+            row["from_reference"] = {side: largest_differences([reference], runs[side]) for side in runs}
         record["rows"].append(row)
-        print(f"mesh x{factor:g}: baseline {old_wall:.1f} s, this code {new_wall:.1f} s, speed-up x{row['speedup']:.2f}; "
+        print(f"mesh x{factor:g}: baseline {old_wall:.1f} s, this code {new_wall:.1f} s, speed-up x{row['speedup']:.2f} "
+              f"(CPU x{row['cpu_speedup']:.2f}); "
               f"largest differences {row['largest_differences']}", flush=True)
     if args.profile:
         record["profiles"] = {}
         for side, (python, env, root) in sides.items():
             prof = work / f"{side}.prof"
-            run_once(python, env, root, args.case, args.condition, args.mesh[0], work / f"{side}_profile", profile=prof)
+            run_once(python, env, root, args.case, args.condition, args.mesh[0], work / f"{side}_profile", profile=prof,
+                     overrides=args.overrides)
             record["profiles"][side] = top_functions(prof, root)
     record["load_after"] = os.getloadavg()[0]
     text = markdown(record)
