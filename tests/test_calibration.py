@@ -228,3 +228,43 @@ def test_propagate_adds_bands_to_the_summary(synthetic, calibrated, tmp_path):
     assert summary["uncertainty"]["runs_ok"] == 3 and block["inputs"] == INPUTS
     band = summary["uncertainty"]["quantities"]["dimensions_mm.change.id"]
     assert band["p5"] <= band["median"] <= band["p95"]
+
+
+def test_run_uncertainty_from_the_priors_writes_bands_and_the_report_shows_them(tmp_path):
+    from quenchsim.cli import main
+    from quenchsim.report.run_report import write_report
+
+    case = _case_file(tmp_path)
+    assert main(["run", str(case), "--out", str(tmp_path / "bad"), "--uncertainty", "1", "--quiet"]) == 2
+    assert not (tmp_path / "bad" / "summary.json").exists()          # refused before the run started
+    assert main(["run", str(case), "--out", str(tmp_path / "run"), "--uncertainty", "3", "--workers", "0",
+                 "--quiet"]) == 0
+    block = json.loads((tmp_path / "run" / "summary.json").read_text())["uncertainty"]
+    assert block["runs_ok"] == 3 and block["source"].startswith("priors")
+    assert "material.SUJ3.mechanics.trip.K_1_Pa.per_phase.martensite" in block["inputs"]
+    band = block["quantities"]["dimensions_mm.change.od"]
+    assert band["p5"] < band["p95"]                    # the priors move the OD change
+    html = write_report([tmp_path / "run"], tmp_path / "report.html")[0].read_text()
+    assert "Every summary quantity with its band" in html
+
+
+def test_calibrate_command_with_a_run_budget_resumes(tmp_path, capsys):
+    from quenchsim.cli import main
+
+    _write_cases(tmp_path)
+    table = cal_table([0.06, 0.075], design={"screening_trajectories": 2, "training_runs": 2, "holdout_runs": 1, "seed": 5})
+    table["inputs"] = INPUTS[:1]
+    table["cases"].pop("ring2")
+    table.pop("predictions")
+    table["sampler"] = {"walkers": 8, "steps": 200, "burn": 50}
+    (tmp_path / "cal.toml").write_text(tomli_w.dumps(table))
+    args = ["calibrate", str(tmp_path / "cal.toml"), "--out", str(tmp_path / "out"), "--workers", "0", "--quiet"]
+    assert main([*args, "--max-runs", "3"]) == 3
+    first = json.loads((tmp_path / "out" / "calibration.json").read_text())["runs"]
+    assert first["ran_now"] == 3 and first["pending"] == first["total"] - 3 > 0
+    assert f"3 runs done now, {first['pending']} still to run" in capsys.readouterr().out
+    assert main(args) == 0
+    result = json.loads((tmp_path / "out" / "calibration.json").read_text())
+    assert result["runs"] == {"total": first["total"], "ran_now": first["total"] - 3, "cached": 3, "failed": [],
+                              "pending": 0}
+    assert (tmp_path / "out" / "calibrated" / "SUJ3.toml").is_file()
