@@ -31,13 +31,12 @@ import numpy as np
 
 from quenchsim.calibration.design import latin_hypercube, morris_indices, morris_points, sobol_indices
 from quenchsim.calibration.inputs import derived_files
-from quenchsim.calibration.posterior import (Posterior, posterior_table, predictive_check, sample_posterior)
+from quenchsim.calibration.posterior import Posterior, posterior_table, predictive_check, sample_posterior
 from quenchsim.calibration.runs import RunRequest, quantity, request, run_requests
 from quenchsim.calibration.spec import CalibrationSpec
-from quenchsim.calibration.surrogate import Z_90, Surrogate, fit_surrogate, holdout_check
+from quenchsim.calibration.surrogate import Surrogate, fit_surrogate, holdout_check
 from quenchsim.errors import InputError
 
-ROLES = ("nominal", "screening", "training", "holdout")
 POSTERIOR_SAMPLES_KEPT = 2000
 """Posterior samples written to posterior.json (thinned evenly from the chain)."""
 

@@ -12,7 +12,7 @@ Every point is a pure function of the seed, so a resumed calibration asks for ex
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable
 
 import numpy as np
 
@@ -50,7 +50,7 @@ def morris_indices(points: np.ndarray, values: np.ndarray) -> dict[str, list[flo
     return {"mu_star": [float(x) for x in res["mu_star"]], "sigma": [float(x) for x in res["sigma"]]}
 
 
-def sobol_indices(predict: "callable", d: int, seed: int) -> dict[str, list[float]]:
+def sobol_indices(predict: Callable[[np.ndarray], np.ndarray], d: int, seed: int) -> dict[str, list[float]]:
     """First-order and total Sobol indices of the function ``predict(u) -> values`` over the unit cube."""
     from SALib.analyze import sobol
     from SALib.sample import sobol as sobol_sample
@@ -59,8 +59,3 @@ def sobol_indices(predict: "callable", d: int, seed: int) -> dict[str, list[floa
     u = sobol_sample.sample(problem, SOBOL_BASE_SAMPLES, calc_second_order=False, seed=seed)
     res = sobol.analyze(problem, predict(u), calc_second_order=False, print_to_console=False, seed=seed)
     return {"S1": [float(x) for x in res["S1"]], "ST": [float(x) for x in res["ST"]]}
-
-
-def roles(points: dict[str, np.ndarray]) -> Sequence[tuple[str, np.ndarray]]:
-    """(role, point) pairs of a design, in run order."""
-    return [(role, p) for role, block in points.items() for p in block]

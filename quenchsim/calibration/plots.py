@@ -4,11 +4,23 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from quenchsim.calibration.inputs import FreeInput
 from quenchsim.figures import save, subplots
+
+
+def _factor_ticks(axis: Any, bounds: tuple[float, float]) -> None:
+    """Ticks at the prior's bounds and at 1 (the data file's value), plain numbers, no minor labels."""
+    from matplotlib.ticker import FixedLocator, NullFormatter, NullLocator
+
+    ticks = sorted({bounds[0], 1.0, bounds[1]} if bounds[0] < 1.0 < bounds[1] else set(bounds))
+    axis.set_major_locator(FixedLocator(ticks))
+    axis.set_major_formatter(lambda x, _pos: f"{x:.3g}")
+    axis.set_minor_locator(NullLocator())
+    axis.set_minor_formatter(NullFormatter())
 
 
 def corner_plot(factors: np.ndarray, inputs: Sequence[FreeInput], path: Path,
@@ -39,6 +51,9 @@ def corner_plot(factors: np.ndarray, inputs: Sequence[FreeInput], path: Path,
             ax.axvline(1.0, ls="--", lw=0.6, color="tab:blue")
             if truth is not None:
                 ax.axvline(truth[j], lw=0.8, color="tab:red")
+            _factor_ticks(ax.xaxis, inputs[j].factor_bounds)
+            if i != j:
+                _factor_ticks(ax.yaxis, inputs[i].factor_bounds)
             if i == d - 1:
                 ax.set_xlabel(f"{inputs[j].label}\n(factor)", fontsize=8)
             if j == 0 and i > 0:

@@ -10,6 +10,7 @@ PASP 125 (2013) 306), walkers started from the prior.
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -65,10 +66,15 @@ def sample_posterior(surrogate: Surrogate, observed: np.ndarray, sigma: np.ndarr
     sampler = emcee.EnsembleSampler(walkers, d, log_prob, vectorize=True)
     sampler.random_state = np.random.RandomState(seed).get_state()
     sampler.run_mcmc(rng.uniform(size=(walkers, d)), steps, progress=False)
+    autocorr_log = logging.getLogger("emcee.autocorr")   # its "chain too short" warning: the value is recorded
+    level = autocorr_log.level
+    autocorr_log.setLevel(logging.ERROR)
     try:
         tau = float(np.max(sampler.get_autocorr_time(discard=burn, quiet=True)))
     except Exception:  # noqa: BLE001 -- emcee raises on a too-short chain; the diagnostic is then unknown
         tau = None
+    finally:
+        autocorr_log.setLevel(level)
     return Posterior(u=sampler.get_chain(discard=burn, thin=thin, flat=True),
                      acceptance=float(np.mean(sampler.acceptance_fraction)), autocorr_steps=tau)
 

@@ -21,7 +21,7 @@ from tqdm import tqdm
 
 from quenchsim.calibration.inputs import FreeInput, derived_files, used_by
 from quenchsim.case import Case
-from quenchsim.sweep import finished, run_on_dask, run_point, case_hash
+from quenchsim.sweep import case_hash, finished, run_on_dask, run_point
 
 
 @dataclass(frozen=True)
