@@ -4,7 +4,8 @@ The synthetic problem: two small SUJ3 rings (oil table, full chain with mechanic
 "measurements" are ring 1's ID and OD changes from a run at known input factors plus Gaussian noise; the
 posterior must cover the known inputs, and its 90 % band of ring 2's ID/OD change must cover ring 2's run at
 the known inputs, at about the stated rate over repeated noise seeds (surrogate trained once, MCMC repeated).
-The default suite uses a few seeds and short chains; the slow test uses many.
+The default suite uses a few seeds and short chains (and resumes the design after a run budget); the slow tests
+use many seeds, and the command line with a run budget.
 """
 
 from __future__ import annotations
@@ -248,6 +249,7 @@ def test_run_uncertainty_from_the_priors_writes_bands_and_the_report_shows_them(
     assert "Every summary quantity with its band" in html
 
 
+@pytest.mark.slow
 def test_calibrate_command_with_a_run_budget_resumes(tmp_path, capsys):
     from quenchsim.cli import main
 

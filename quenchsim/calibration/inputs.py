@@ -91,7 +91,8 @@ class FreeInput:
         return math.log(factor / lo) / math.log(hi / lo)
 
 
-def _first_number(spec: Any) -> float | None:
+def first_value(spec: Any) -> float | None:
+    """The entry's value, or the first value of its table (the number a range applies to)."""
     value = spec.get("value") if isinstance(spec, Mapping) else spec
     if isinstance(value, list) and value:
         value = value[0]
@@ -168,7 +169,7 @@ def free_input(path: str, field: str = "inputs") -> FreeInput:
         bounds, prior = (1.0 / f, f), f"range_factor {f:g}"
     else:
         lo, hi = (float(x) for x in holder["range"])
-        v = _first_number(holder)
+        v = first_value(holder)
         if v is None or v <= 0.0 or lo <= 0.0:
             raise InputError(field, path, f"range {holder['range']} needs a positive value to be a factor band")
         bounds, prior = (lo / v, hi / v), f"range [{lo:g}, {hi:g}]"

@@ -14,11 +14,12 @@ def _g(x: Any, fmt: str = ".4g") -> str:
 
 def posterior_rows(result: dict[str, Any]) -> list[str]:
     """The posterior table (one row per input)."""
-    rows = ["| input | prior (factor bounds) | posterior factor median | 5-95 % | width / prior width | identifiability |",
-            "|---|---|---|---|---|---|"]
+    rows = ["| input | prior (factor bounds) | data-file value -> calibrated | posterior factor median | 5-95 % | "
+            "width / prior width | identifiability |", "|---|---|---|---|---|---|---|"]
     for r in result["posterior"]:
         lo, hi = r["prior_factor_bounds"]
-        rows.append(f"| `{r['input']}` | {r['prior']} ({lo:.3g}-{hi:.3g}) | {r['factor_median']:.3g} | "
+        value = f"{_g(r.get('value'))} -> {_g(r.get('value_at_median'))}"
+        rows.append(f"| `{r['input']}` | {r['prior']} ({lo:.3g}-{hi:.3g}) | {value} | {r['factor_median']:.3g} | "
                     f"{r['factor_5pct']:.3g}-{r['factor_95pct']:.3g} | {r['width_ratio']:.2f} | {r['identifiability']} |")
     return rows
 

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from quenchsim.calibration.inputs import FreeInput
+from quenchsim.calibration.inputs import FreeInput, first_value
 from quenchsim.calibration.surrogate import Surrogate
 
 IDENTIFIED_BELOW = 0.5
@@ -95,14 +95,17 @@ def identifiability(u: np.ndarray) -> tuple[float, str]:
 
 
 def posterior_table(posterior: Posterior, inputs: Sequence[FreeInput]) -> list[dict[str, object]]:
-    """One row per input: factor median and 5-95 %, prior bounds, identifiability."""
+    """One row per input: factor median and 5-95 %, prior bounds, the data file's (first) value and that value at the
+    median, identifiability."""
     rows = []
     factors = posterior.factors(inputs)
     for j, inp in enumerate(inputs):
         p5, p50, p95 = np.quantile(factors[:, j], [0.05, 0.5, 0.95])
         ratio, statement = identifiability(posterior.u[:, j])
+        nominal = first_value(inp.nominal)
         rows.append({"input": inp.path, "label": inp.label, "prior": inp.prior,
-                     "prior_factor_bounds": list(inp.factor_bounds), "factor_median": float(p50),
+                     "prior_factor_bounds": list(inp.factor_bounds), "value": nominal,
+                     "value_at_median": None if nominal is None else nominal * float(p50), "factor_median": float(p50),
                      "factor_5pct": float(p5), "factor_95pct": float(p95), "width_ratio": ratio,
                      "identifiability": statement})
     return rows

@@ -83,8 +83,8 @@ def _nominal(out: Path) -> dict[str, float]:
     return {k.split(":")[-1].split(".")[-1]: v for k, v in row.items() if k.startswith("ring_a/")}
 
 
-def _band(b: dict[str, float]) -> str:
-    return f"{b['median']:+.3f} ({b['p5']:+.3f} to {b['p95']:+.3f})"
+def _band(b: dict[str, float], fmt: str = "+.3f") -> str:
+    return f"{b['median']:{fmt}} ({b['p5']:{fmt}} to {b['p95']:{fmt}})"
 
 
 def page(metrics: dict[str, Any]) -> str:
@@ -125,13 +125,19 @@ def page(metrics: dict[str, Any]) -> str:
         b = pred[c]["band"]
         t = trend.get(c)
         md.append(f"| {label} | {_band(b['id'])} | {_band(b['od'])} | {_band(t['id']) if t else '-'} | "
-                  f"{_band(t['od']) if t else '-'} | {_band(pred[c]['HRC58_depth_bore_mm'])} |")
+                  f"{_band(t['od']) if t else '-'} | {_band(pred[c]['HRC58_depth_bore_mm'], '.1f')} |")
     b4 = pred["B4"]["band"]
     md += ["", "## Ring B, condition 4: prediction with band (ring B not used in the calibration)", "",
            "| dimension | predicted change mm, median (5-95 %) |", "|---|---|",
            f"| raceway diameter (ID) | {_band(b4['id'])} |", f"| OD | {_band(b4['od'])} |", f"| width | {_band(b4['width'])} |",
            "", "The reference report prints no dimensions after quench for ring B (docs/reference/quench_cases.md, "
            "validation/quench/ring_b/targets.toml): there is no measurement to set against this band.", "",
+           "How to read the bands: they carry the posterior of the four inputs and nothing else. Where the posterior "
+           "sits at the edges of its priors (above), the band is narrow because the priors end there, not because the "
+           "prediction is known that well: ring A condition 1's own measurement lies "
+           f"{abs(metrics['calibrated_run_id_change_mm'] - check['id']['measured']):.2f} mm (ID) outside its band. An "
+           "honest error bar for ring B adds that model-form discrepancy, which one measured ring cannot separate "
+           "from the inputs.", "",
            "## Surrogate and screening", ""]
     for k, h in cal["surrogate"]["holdout"].items():
         md.append(f"* {k}: held-back RMS error {h['rms_error']:.3f} mm (largest {h['max_abs_error']:.3f}) over {h['n']} runs; "
