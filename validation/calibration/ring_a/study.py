@@ -111,9 +111,11 @@ def page(metrics: dict[str, Any]) -> str:
                   f"{full:+.3f} | {_band(pred['A1']['band'][k])} |")
     reached = all(row["reached"] for row in cal["predictive_check"])
     edge = [r["label"] for r in cal["posterior"] if "edge" in r["identifiability"]]
+    misses = [f"{row['quantity'].split('.')[-1].upper()} by {abs(row['z']):.1f} sd" for row in cal["predictive_check"]
+              if not row["reached"]]
     md += ["", ("The posterior reaches the measurements within two standard deviations."
-                if reached else "**The declared priors cannot explain the measured shrinkage**: the posterior prediction "
-                "stays more than two standard deviations from the measurement (z in calibration.md).")
+                if reached else "**Not reached within two standard deviations** by the posterior prediction: "
+                + ", ".join(misses) + " (the measurement's and the surrogate's uncertainty together).")
            + (f" Inputs at the edge of their prior: {', '.join(edge)} -- the data push them beyond the published range: "
               "a model-form discrepancy (missing physics or a wrong structure), not a calibration." if edge else ""), "",
            "## Ring A, conditions 2 and 3: the report's trends", "",
@@ -134,8 +136,8 @@ def page(metrics: dict[str, Any]) -> str:
            "validation/quench/ring_b/targets.toml): there is no measurement to set against this band.", "",
            "How to read the bands: they carry the posterior of the four inputs and nothing else. Where the posterior "
            "sits at the edges of its priors (above), the band is narrow because the priors end there, not because the "
-           "prediction is known that well: ring A condition 1's own measurement lies "
-           f"{abs(metrics['calibrated_run_id_change_mm'] - check['id']['measured']):.2f} mm (ID) outside its band. An "
+           "prediction is known that well: ring A condition 1's measured ID lies "
+           f"{pred['A1']['band']['id']['p5'] - check['id']['measured']:.2f} mm below its own band. An "
            "honest error bar for ring B adds that model-form discrepancy, which one measured ring cannot separate "
            "from the inputs.", "",
            "## Surrogate and screening", ""]
