@@ -443,7 +443,7 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, scheduler: str | None = None
             for name, _ in todo:
                 record(name, run_point(*args[name]))
         elif todo:
-            interrupted = _run_on_dask(args, scheduler, workers, record)
+            interrupted = run_on_dask(args, scheduler, workers, record)
     except KeyboardInterrupt:
         interrupted = True
     finally:
@@ -454,9 +454,10 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, scheduler: str | None = None
                         interrupted=interrupted)
 
 
-def _run_on_dask(args: dict[str, tuple[Any, ...]], scheduler: str | None, workers: int,
-                 record: Callable[[str, dict[str, Any]], None]) -> bool:
-    """Submit every case, record results as they arrive; True when interrupted by Ctrl-C."""
+def run_on_dask(args: dict[str, tuple[Any, ...]], scheduler: str | None, workers: int,
+                record: Callable[[str, dict[str, Any]], None]) -> bool:
+    """Submit every case (``name -> run_point arguments``, one base case table shared by all) and record the
+    results as they arrive; True when interrupted by Ctrl-C. Also the calibration's design runner."""
     from dask.distributed import as_completed
 
     client, cluster = _client(scheduler, workers)

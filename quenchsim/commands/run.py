@@ -1,4 +1,5 @@
-"""`quenchsim run CASE.toml --condition NAME --out DIR [--mesh-size MM] [--set KEY=VALUE ...] [--resume]`."""
+"""`quenchsim run CASE.toml --condition NAME --out DIR [--mesh-size MM] [--set KEY=VALUE ...] [--resume]
+[--uncertainty N [--posterior DIR]]`."""
 
 from __future__ import annotations
 
@@ -38,6 +39,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="continue the interrupted run of this case in --out from its checkpoint")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     parser.add_argument("--json", action="store_true", help="print the key results as JSON instead of a table")
+    parser.add_argument("--uncertainty", type=int, metavar="N",
+                        help="then N runs drawn from --posterior (or the data files' priors): median and 5-95 %% band of "
+                             "every summary quantity (summary.json 'uncertainty', the report)")
+    parser.add_argument("--posterior", type=Path, metavar="DIR", help="a `quenchsim calibrate` output folder")
+    parser.add_argument("--workers", type=int, default=2, help="Dask workers for --uncertainty (0: this process)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -50,13 +56,25 @@ def run(args: argparse.Namespace) -> int:
             raise InputError("--mesh-size", args.mesh_size, "must be > 0 (mm)")
         case = case.with_mesh_size(args.mesh_size)
     out = args.out or Path("runs") / f"{case.name}_{case.condition or 'base'}"
+    if args.uncertainty is not None:   # checked before the run starts
+        from quenchsim.calibration.propagate import uncertain_inputs
+
+        uncertain_inputs(case, args.uncertainty, args.posterior)
     logging.basicConfig(level=logging.WARNING, format="quenchsim: %(message)s")
     result = run_case(case, out, progress=not args.quiet, resume=args.resume)
     s = result.summary
+    if args.uncertainty is not None:
+        from quenchsim.calibration.propagate import band_table, propagate
+
+        s["uncertainty"] = propagate(case, out, args.uncertainty, posterior=args.posterior, workers=args.workers,
+                                     progress=not args.quiet)
+        if not args.json:
+            print(band_table(s["uncertainty"]))
     if args.json:
         print(json.dumps({"out": str(out), "status": s["status"], "probes": s["probes"], "hardness": s["hardness"],
                           **({"dimensions_mm": s["dimensions_mm"]} if "dimensions_mm" in s else {}),
-                          "end_state": s["end_state"], "solver": s["solver"]}, indent=2))
+                          "end_state": s["end_state"], "solver": s["solver"],
+                          **({"uncertainty": s["uncertainty"]} if "uncertainty" in s else {})}, indent=2))
     else:
         print(summary_table(s, out))
     return 0

@@ -181,9 +181,26 @@ def _dimension_table(run: RunResults, missing: list[str]) -> list[Item]:
     return items
 
 
+def _uncertainty_table(run: RunResults) -> list[Item]:
+    """The bands of ``quenchsim run --uncertainty`` (summary.json ``uncertainty``): every quantity, nominal run
+    beside the median and the 5-95 % band of the draws."""
+    from quenchsim.sweep import flatten
+
+    block = (run.summary or {}).get("uncertainty")
+    if not block:
+        return []
+    nominal = dict(flatten(run.summary))
+    rows = [[key, nominal.get(key), b["median"], b["p5"], b["p95"]] for key, b in block["quantities"].items()]
+    text = (f"{block['runs_ok']} of {block['runs']} full-chain runs with the inputs drawn from the {block['source']}: "
+            + ", ".join(f"`{p}`" for p in block["inputs"]) + ".")
+    return [Item("text", "Uncertainty", text=text),
+            Item("table", "Every summary quantity with its band", header=["quantity", "this run", "median", "5 %", "95 %"],
+                 rows=rows)]
+
+
 def run_section(run: RunResults) -> Section:
     """Everything the report shows of one run directory."""
-    items = _summary_tables(run)
+    items = _summary_tables(run) + _uncertainty_table(run)
     missing: list[str] = []
     if run.probes is not None:
         t = run.probes["time_s"]

@@ -1,0 +1,36 @@
+"""`quenchsim calibrate CAL.toml --out DIR [--workers 2] [--max-runs N]`."""
+
+from __future__ import annotations
+
+import argparse
+import logging
+from pathlib import Path
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("calibration", type=Path, help="calibration file (TOML; see quenchsim.calibration.spec)")
+    parser.add_argument("--out", type=Path, help="output directory (default runs/calibration_<name>)")
+    parser.add_argument("--workers", type=int, default=2, help="Dask worker processes (0: runs in this process)")
+    parser.add_argument("--max-runs", type=int, help="stop after this many new full-chain runs (run again to go on)")
+    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def run(args: argparse.Namespace) -> int:
+    from quenchsim.calibration import calibrate, load_calibration
+    from quenchsim.calibration.page import posterior_rows
+    from quenchsim.errors import require
+
+    require(args.workers >= 0, "--workers", args.workers, "must be >= 0")
+    require(args.max_runs is None or args.max_runs >= 0, "--max-runs", args.max_runs, "must be >= 0")
+    spec = load_calibration(args.calibration)
+    out = args.out or Path("runs") / f"calibration_{spec.name}"
+    logging.basicConfig(level=logging.WARNING, format="quenchsim: %(message)s")
+    result = calibrate(spec, out, workers=args.workers, progress=not args.quiet, max_runs=args.max_runs)
+    runs = result["runs"]
+    if result["status"] == "incomplete":
+        print(f"{spec.name}: {runs['ran_now']} runs done now, {runs['pending']} still to run: run the same command "
+              f"again to continue ({out})")
+        return 3
+    print("\n".join(posterior_rows(result)))
+    print(f"{result['full_chain_runs']} full-chain runs, {result['wall_time_s']:.0f} s; see {out / 'calibration.md'}")
+    return 0
