@@ -30,6 +30,7 @@ from typing import Any
 
 import tomli_w
 
+from quenchsim.case import Case
 from quenchsim.errors import InputError
 from quenchsim.materials import load_data_file, load_material
 
@@ -238,9 +239,7 @@ def derived_files(inputs: list[FreeInput], factors: list[float], folder: Path,
     return overrides
 
 
-def used_by(inp: FreeInput, case_data: Mapping[str, Any]) -> bool:
-    """Whether a case (its merged table) reads the input's data file."""
-    node: Any = case_data
-    for key in KINDS[inp.kind].case_field.split("."):
-        node = node.get(key) if isinstance(node, Mapping) else None
-    return isinstance(node, str) and Path(node).stem == inp.data_name
+def used_by(inp: FreeInput, case: Case) -> bool:
+    """Whether a case reads the input's data file."""
+    name = case.get(KINDS[inp.kind].case_field)
+    return isinstance(name, str) and Path(name).stem == inp.data_name

@@ -42,11 +42,9 @@ def _posterior_draws(folder: Path, n: int, seed: int) -> tuple[list[FreeInput], 
 def _prior_draws(case: Case, n: int, seed: int) -> tuple[list[FreeInput], np.ndarray, str]:
     inputs: list[FreeInput] = []
     for kind, spec in KINDS.items():
-        node: Any = case.data
-        for key in spec.case_field.split("."):
-            node = node.get(key) if isinstance(node, dict) else None
-        if isinstance(node, str):
-            inputs += declared_priors(kind, node)
+        name = case.get(spec.case_field)
+        if isinstance(name, str):
+            inputs += declared_priors(kind, name)
     u = latin_hypercube(len(inputs), n, seed)
     factors = np.column_stack([inp.factor(u[:, j]) for j, inp in enumerate(inputs)]) if inputs else np.empty((n, 0))
     return inputs, factors, "priors declared in the data files the case reads"
@@ -62,7 +60,7 @@ def uncertain_inputs(case: Case, n: int, posterior: str | Path | None = None,
         inputs, factors, source = _posterior_draws(Path(posterior), n, seed)
     else:
         inputs, factors, source = _prior_draws(case, n, seed)
-    used = [j for j, inp in enumerate(inputs) if used_by(inp, case.data)]
+    used = [j for j, inp in enumerate(inputs) if used_by(inp, case)]
     if not used:
         raise InputError("--uncertainty", n, f"the case reads none of the uncertain inputs ({source})")
     return [inputs[j] for j in used], factors[:, used], source

@@ -44,7 +44,7 @@ class RunRequest:
 
 def request(case: Case, inputs: Sequence[FreeInput], factors: Sequence[float]) -> RunRequest:
     """The run of ``case`` with those inputs it reads set to their factors."""
-    chosen = [(i, float(f)) for i, f in zip(inputs, factors) if used_by(i, case.data)]
+    chosen = [(i, float(f)) for i, f in zip(inputs, factors) if used_by(i, case)]
     return RunRequest(case=case, inputs=tuple(i for i, _ in chosen), factors=tuple(f for _, f in chosen))
 
 

@@ -214,7 +214,7 @@ def parse_calibration(raw: Mapping[str, Any], base_dir: Path, path: Path | None 
             require(probe in names, f"{where}.quantity", m.quantity, f"no probe {probe!r}; the case's probes: "
                     f"{', '.join(names) or 'none'}")
     for i, inp in enumerate(inputs):
-        require(any(used_by(inp, c.data) for c in loaded.values()), f"inputs[{i}]", inp.path,
+        require(any(used_by(inp, c) for c in loaded.values()), f"inputs[{i}]", inp.path,
                 "no case of the calibration reads that data file")
     return CalibrationSpec(name=str(raw.get("name", path.stem if path else "calibration")),
                            description=str(raw.get("description", "")), path=path, inputs=inputs, cases=cases,
