@@ -3,8 +3,8 @@
 The ring is austenitised (uniform T, stress free), quenched, then cooled in air to room temperature.
 Each time step solves the thermal problem with the phase kinetics inside its fixed-point iteration,
 then (when enabled) the stress problem with the same step. The step starts small, grows under limits
-on the temperature and phase change per step, and is cut back and retried when an iteration does not
-converge (logged). Probes and VTK frames are written as they are produced; a run that fails keeps them
+on the temperature change and the diffusional (pearlite, bainite) phase change per step, and is cut
+back and retried when an iteration does not converge (logged). Probes and VTK frames are written as they are produced; a run that fails keeps them
 and records where it stopped in ``summary.json``.
 """
 
@@ -162,6 +162,8 @@ class _Untransformed:
     """Phase model of a material that does not transform (``transformations = "none"``): the phase it was heated to
     stays, no latent heat."""
 
+    time_dependent_phases: tuple[str, ...] = ()
+
     @staticmethod
     def initial_state(shape: tuple[int, ...]) -> _UntransformedState:
         return _UntransformedState({"austenite": np.ones(shape)})
@@ -180,10 +182,15 @@ class _Untransformed:
 
 
 class _Kinetics:
-    """Adapter: the metallurgy package as the thermal solver's phase model."""
+    """Adapter: the metallurgy package as the thermal solver's phase model.
+
+    ``time_dependent_phases``: the products of the diffusional reactions, whose fraction change per step
+    ``time.max_dX`` limits; martensite is a function of the temperature alone (Koistinen-Marburger), so
+    ``time.max_dT_K`` limits its steps."""
 
     def __init__(self, kin: Any) -> None:
         self.kin = kin
+        self.time_dependent_phases = tuple(kin.reactions)
 
     def advance(self, state: Any, T_old_C: np.ndarray, T_new_C: np.ndarray, dt_s: float) -> Any:
         return metallurgy.advance(state, self.kin, T_old_C, T_new_C, dt_s)
@@ -370,7 +377,8 @@ class QuenchRun:
                     log.warning("%s; cutting the step to %.3g s", exc, dt / 2)
                     position["dt_s"], counts["rejected"] = dt / 2, counts["rejected"] + 1
                     continue
-                limit = max(step.max_dT_K / ctl.max_dT_K, step.max_dX / ctl.max_dX)
+                dX = max((step.max_dX_by_phase.get(p, 0.0) for p in self.phase_model.time_dependent_phases), default=0.0)
+                limit = max(step.max_dT_K / ctl.max_dT_K, dX / ctl.max_dX)
                 if limit > 2.0 and dt / 2 >= ctl.dt_min_s:
                     position["dt_s"], counts["rejected"] = dt / 2, counts["rejected"] + 1
                     continue

@@ -85,7 +85,13 @@ class AirStage:
 
 @dataclass(frozen=True)
 class TimeControl:
-    """Adaptive step control (the mechanics takes the same steps)."""
+    """Adaptive step control (the mechanics takes the same steps).
+
+    A step is limited by the largest nodal temperature change (``max_dT_K``, K) and the largest change of a
+    diffusional product's fraction (``max_dX``: pearlite, bainite; martensite follows the temperature and is
+    limited through ``max_dT_K``); it grows by at most ``growth`` per step between ``dt_min_s`` and ``dt_max_s``.
+    The defaults keep the time-discretisation error of ring A condition 1 within the project's tolerances
+    (validation/quench/convergence)."""
 
     dt_initial_s: float
     dt_min_s: float

@@ -138,7 +138,7 @@ else below are predictions.
 | pearlite tau_ref, n; bainite tau_ref, m, Q, n, n_per_K, Bs | 100Cr6 data (same fit as SUJ2, with SUJ3's Ae1/Ms) |
 | pearlite m, Q | Li et al. 1998 shape (the data cannot constrain them) |
 | pearlite T_u = Ae1 719 C | ShKh15 Ac1 724 C shifted by Andrews' Ae1 composition terms |
-| bainite time-scale factor {m['calibration_factor_bainite']:g} | CALIBRATION: ring A condition 1 HRC58 depth 5 mm (bisection: factor 1.0 / 1.3 / 1.38 / 1.6 / 2 / 3 / 10 -> 0 / 3.5 / 5.0 / 9.0 / 12.7 / 16.4 / 18.2 mm) |
+| bainite time-scale factor {m['calibration_factor_bainite']:g} | CALIBRATION: ring A condition 1 HRC58 depth 5 mm (bisection at the default step limits: factor 1.30 / 1.32 / 1.326 / 1.33 / 1.38 / 1.6 -> 4.36 / 4.82 / 4.99 / 5.10 / 6.46 / 11.06 mm; materials/data/SUJ3_from_100Cr6.toml) |
 
 A factor on the pearlite time scale (the obvious candidate) cannot give a 5 mm case: with the 100Cr6 bainite the
 oil-quenched wall is bainitic (57 HRC at the bore, HRC58 depth 0) and slowing the pearlite only makes more of it
