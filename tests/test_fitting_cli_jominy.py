@@ -34,8 +34,10 @@ def _ttt_file(tmp_path: Path, **changes) -> Path:
              "t_finish_s": bainite.isothermal_time_s(0.99, T).tolist(), "time_uncertainty_factor": 1.2,
              "source": "SUJ2 model times", "kind": "read", **changes}
     spec = {"T_ref_C": 350, "free": ["tau_ref_s"], "T_upper_C": {"value": bainite.T_upper_C, "source": "SUJ2"}}
-    for k in ("undercooling_exponent", "Q_J_mol", "n", "n_per_K"):
+    for k in ("undercooling_exponent", "Q_J_mol"):
         spec[k] = {"value": bainite.params[k], "source": "SUJ2 file"}
+    for k in ("n_nodes_T_C", "n_nodes"):  # SUJ2's bainite n(T) is piecewise linear
+        spec[k] = {"value": bainite.params[k].tolist(), "source": "SUJ2 file"}
     spec["tau_ref_s"] = {"value": 10.0, "source": "start"}
     path = tmp_path / "bainite_ttt.toml"
     path.write_text(tomli_w.dumps({"name": "t", "material": "SUJ2", "T_aust_C": 850, "source": "test", "ttt": [entry],

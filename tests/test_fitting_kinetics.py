@@ -3,6 +3,7 @@ fits are refused with the parameter named, the material file round-trips, the sh
 
 from __future__ import annotations
 
+import dataclasses
 import tomllib
 from pathlib import Path
 
@@ -10,6 +11,7 @@ import numpy as np
 import pytest
 import tomli_w
 
+from quenchsim.errors import InputError
 from quenchsim.fitting import kinetics as fk
 from quenchsim.fitting.diagram_data import CoolingCurve, load_diagram_data
 from quenchsim.materials import load_material, materials_dir
@@ -154,7 +156,8 @@ def test_shipped_steel_reproduces_its_fit(steel):
     material = load_material(steel)
     record = material["kinetics"]["fit"]
     data = load_diagram_data(materials_dir().parent / record["data_file"])
-    shipped = {r: {k: v["value"] for k, v in material["kinetics"][r].items() if isinstance(v, dict) and k != "T_ref_C"}
+    shipped = {r: {k: tuple(v["value"]) if isinstance(v["value"], list) else v["value"]
+                   for k, v in material["kinetics"][r].items() if isinstance(v, dict) and k != "T_ref_C"}
                for r in data.fit}
     for r, spec in data.fit.items():  # undo the declared calibration: the fit sees the data's steel
         shipped[r]["tau_ref_s"] /= spec.tau_factor
@@ -166,3 +169,75 @@ def test_shipped_steel_reproduces_its_fit(steel):
             assert result.parameters[r][k] == pytest.approx(v, rel=0.01, abs=1e-4), (r, k)
     recorded = [row["normalised"] for row in record["residuals"]]
     np.testing.assert_allclose([x.residual for x in result.residuals], recorded, rtol=0.05, atol=0.05)
+
+
+NODES_T_C = [240.0, 350.0, 430.0, 440.0]
+TRUE_NODES = {"tau_ref_s": 80.0, "undercooling_exponent": 0.55, "Q_J_mol": 7.2e4}
+TRUE_N_AT_NODES = [3.5, 2.65, 2.6, 1.75]
+
+
+def _node_spec(truth_n: list[float], free: list[str], start: dict | None = None, start_n: list[float] | None = None) -> dict:
+    spec = _spec(442.0, 350.0, TRUE_NODES, free, start)
+    spec["n_nodes_T_C"] = {"value": NODES_T_C, "source": "synthetic nodes"}
+    spec["n_nodes"] = {"value": start_n or truth_n, "source": "synthetic truth"}
+    return spec
+
+
+def test_ttt_fit_recovers_a_piecewise_linear_avrami_exponent(tmp_path):
+    """A bainite C-curve whose n(T) is piecewise linear on 4 nodes (the shape of the Kaymak 100Cr6 TTT: n falls to
+    ~1.7 in the bay at 440 C): start/finish times at 21 temperatures give back tau_ref, m, Q, T_u and every node
+    within 2 % from a start with n = 2.5 everywhere."""
+    kin = _true_kinetics(tmp_path, {"bainite": _node_spec(TRUE_N_AT_NODES, [])})
+    reaction = kin.reactions["bainite"]
+    T = np.arange(240.0, 441.0, 10.0)
+    assert reaction.exponent(np.array([240.0, 390.0, 435.0, 445.0])) == pytest.approx([3.5, 2.625, 2.175, 1.75])
+    ttt = [{"phase": "bainite", "T_C": T.tolist(), "t_start_s": reaction.isothermal_time_s(0.01, T).tolist(),
+            "t_finish_s": reaction.isothermal_time_s(0.99, T).tolist(), "time_uncertainty_factor": 1.15,
+            "source": "synthetic", "kind": "printed"}]
+    start = {"tau_ref_s": 50.0, "undercooling_exponent": 1.0, "Q_J_mol": 9.0e4}
+    spec = _node_spec(TRUE_N_AT_NODES, [*TRUE_NODES, "T_upper_C", "n_nodes"], start, [2.5] * 4)
+    spec["T_upper_C"]["value"] = 450.0
+    result = fk.fit_kinetics(load_diagram_data(_write(tmp_path, _raw({"bainite": spec}, ttt=ttt))))
+    fitted = result.parameters["bainite"]
+    for key, value in {**TRUE_NODES, "T_upper_C": 442.0}.items():
+        assert fitted[key] == pytest.approx(value, rel=0.02), key
+    assert fitted["n_nodes"] == pytest.approx(tuple(TRUE_N_AT_NODES), rel=0.02)
+    assert len(result.std_errors["bainite"]["n_nodes"]) == 4
+    # the written material carries the nodes and loads with the same law
+    out = fk.write_material(result, tmp_path / "NODES.toml", "data.toml")
+    again = load_kinetics(load_material(str(out)), 840.0).reactions["bainite"]
+    np.testing.assert_allclose(again.isothermal_time_s(0.01, T), reaction.isothermal_time_s(0.01, T), rtol=1e-4)
+
+
+def test_piecewise_exponent_goes_through_the_additivity(tmp_path):
+    """advance() with a piecewise n(T): an isothermal hold in the bay reaches 1 % and 99 % at the law's times, and on a
+    path crossing nodes q = -ln(1 - X) follows the Scheil-Hougardy rule (q converted at each sub-step's n)."""
+    kin = _true_kinetics(tmp_path, {"bainite": _node_spec(TRUE_N_AT_NODES, [])})
+    bainite = kin.reactions["bainite"]
+    kin = dataclasses.replace(kin, reactions={"bainite": bainite})  # bainite alone (no pearlite competing at 436 C)
+    T = 436.0  # between the last two nodes: n = 2.6 + 0.6 (1.75 - 2.6)
+    t1, t99 = (float(bainite.isothermal_time_s(X, np.array([T]))[0]) for X in (0.01, 0.99))
+    s1 = advance(initial_state((1,), kin), kin, T, T, t1)
+    assert s1.fractions["bainite"][0] == pytest.approx(0.01, rel=1e-9)
+    assert advance(s1, kin, T, T, t99 - t1).fractions["bainite"][0] == pytest.approx(0.99, rel=1e-9)
+    # hold at 436 C to 1 %, then at 300 C: the fictitious time carries over with n(300 C)
+    s2 = advance(s1, kin, 300.0, 300.0, 5.0)
+    n_hi, n_lo = (float(bainite.exponent(np.array(x))) for x in (T, 300.0))
+    I = (-np.log(0.99)) ** (1.0 / n_lo) + 5.0 * float(bainite.inverse_tau(np.array([300.0]))[0])
+    assert n_hi < 2.3 < n_lo
+    assert s2.fractions["bainite"][0] == pytest.approx(-np.expm1(-I**n_lo), rel=1e-9)
+
+
+@pytest.mark.parametrize("change, field", [
+    (lambda s: s.update(n={"value": 2.5, "source": "s"}), "fit.bainite.n"),
+    (lambda s: s["n_nodes_T_C"].update(value=[240.0, 350.0, 350.0, 440.0]), "fit.bainite.n_nodes_T_C"),
+    (lambda s: s["n_nodes"].update(value=[3.0, 2.0]), "fit.bainite.n_nodes"),
+    (lambda s: s.update(free=["n"]), "fit.bainite.free"),
+])
+def test_bad_exponent_nodes_are_named(tmp_path, change, field):
+    spec = _node_spec(TRUE_N_AT_NODES, [])
+    change(spec)
+    ttt = [{"phase": "bainite", "T_C": 300.0, "t_start_s": 40.0, "t_finish_s": 300.0, "time_uncertainty_factor": 1.2,
+            "source": "s", "kind": "read"}]
+    with pytest.raises(InputError, match=rf"data\.toml: {field.replace('.', '[.]')}"):
+        load_diagram_data(_write(tmp_path, _raw({"bainite": spec}, ttt=ttt)))

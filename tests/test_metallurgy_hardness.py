@@ -70,6 +70,11 @@ def _broken(edit) -> dict:
     (lambda m: m["kinetics"]["bainite"].update(n_per_K=0.05), "SUJ3.kinetics.bainite.n_per_K"),
     (lambda m: m["kinetics"]["pearlite"].update(Q_J_mol="high"), "SUJ3.kinetics.pearlite.Q_J_mol"),
     (lambda m: m["kinetics"]["bainite"].update(T_ref_C=500.0), "SUJ3.kinetics.bainite.T_ref_C"),
+    (lambda m: m["kinetics"]["bainite"].update(n_nodes_T_C=[240, 440], n_nodes=[3, 2]), "SUJ3.kinetics.bainite.n"),
+    (lambda m: [m["kinetics"]["bainite"].pop(k) for k in ("n", "n_per_K")]
+     and m["kinetics"]["bainite"].update(n_nodes_T_C=[440, 240], n_nodes=[3, 2]), "SUJ3.kinetics.bainite.n_nodes_T_C"),
+    (lambda m: [m["kinetics"]["bainite"].pop(k) for k in ("n", "n_per_K")]
+     and m["kinetics"]["bainite"].update(n_nodes_T_C=[240, 440], n_nodes=[3, 0]), "SUJ3.kinetics.bainite.n_nodes"),
     (lambda m: m["kinetics"]["pearlite"].pop("tau_ref_s"), "SUJ3.kinetics.pearlite.tau_ref_s"),
     (lambda m: m.pop("kinetics"), "SUJ3.kinetics"),
     (lambda m: m["austenitisation"]["dissolved_wt"].update(C=[0.5, 1.5]), "SUJ3.austenitisation.dissolved_wt.C"),

@@ -54,7 +54,8 @@ def run(args: argparse.Namespace) -> int:
         for p, v in values.items():
             tag = "fitted" if p in spec.free else "fixed"
             err = result.std_errors[r].get(p)
-            cells.append(f"{p} = {v:.5g} ({tag}" + (f", +-{err:.2g}{' rel' if p == 'tau_ref_s' else ''})" if err else ")"))
+            cells.append(f"{p} = {_numbers(v, '.5g')} ({tag}"
+                         + (f", +-{_numbers(err, '.2g')}{' rel' if p == 'tau_ref_s' else ''})" if err else ")"))
         print(f"  {r}: " + "; ".join(cells))
         if spec.tau_factor != 1.0:
             print(f"  {r}: tau_ref_s x {spec.tau_factor:g} written to the material (declared calibration)")
@@ -63,3 +64,8 @@ def run(args: argparse.Namespace) -> int:
         print(f"{x.where[:40]:<40} {x.quantity:<22} {x.data:9.4g} {x.model:9.4g} {x.unit:<4} {x.residual:6.2f} {x.kind}")
     print(f"wrote {out}")
     return 0
+
+
+def _numbers(v: float | tuple[float, ...], spec: str) -> str:
+    """A fitted value, or the list of a piecewise n(T)'s node values."""
+    return "[" + ", ".join(format(x, spec) for x in v) + "]" if isinstance(v, tuple) else format(v, spec)

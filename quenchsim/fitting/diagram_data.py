@@ -39,6 +39,9 @@ Schema (every entry carries ``source`` and ``kind`` = "printed" (a number printe
     calibration_tau_factor = { value = 2.0, source = "..." }   # optional: the material gets tau_ref x factor
                              # (a declared calibration of the data's steel to the material's; residuals are the data's)
     undercooling_exponent = { value = 3, source = "Li et al. 1998" }  ...
+    # n(T): n (+ n_per_K) or, in their place, piecewise linear through nodes (free = [..., "n_nodes"] frees every node):
+    n_nodes_T_C = { value = [240, 350, 440], source = "why these nodes" }
+    n_nodes = { value = [3, 2.7, 2], source = "starting value" }
 
 Every rule a point breaks is a one-line :class:`quenchsim.errors.InputError` naming the file, the point
 and the rule (finish before start, a curve that does not cool, hardness outside 100-1000 HV, a Jominy
@@ -57,7 +60,7 @@ import numpy as np
 
 from quenchsim.errors import InputError
 from quenchsim.metallurgy.hardness import hrc_to_hv
-from quenchsim.metallurgy.kinetics import C_CURVE_PARAMETERS
+from quenchsim.metallurgy.kinetics import C_CURVE_PARAMETERS, N_NODES, n_exponent_nodes
 
 KINDS = ("printed", "read")
 """How a point was obtained: a number printed in the source, or read off a figure."""
@@ -67,8 +70,9 @@ PHASE_NAMES = ("ferrite", "pearlite", "bainite", "martensite", "austenite")
 """Phase names a data file may use."""
 HV_RANGE = (100.0, 1000.0)
 """Plausible Vickers hardness of a steel, as-quenched or annealed."""
-FITTABLE = ("T_upper_C", *C_CURVE_PARAMETERS)
-"""Parameters of a reaction a [fit] table may free (T_ref_C only places the reference temperature)."""
+FITTABLE = ("T_upper_C", *C_CURVE_PARAMETERS, "n_nodes")
+"""Parameters of a reaction a [fit] table may free (T_ref_C only places the reference temperature, n_nodes_T_C the
+nodes of a piecewise-linear n(T))."""
 JOMINY_BAR_LENGTH_MM = 100.0
 """Length of the standard end-quench bar (ASTM A255 / ISO 642: 25 mm diameter x 100 mm)."""
 NEWTON_T_HIGH_C, NEWTON_T_LOW_C = 800.0, 500.0
@@ -146,12 +150,12 @@ class JominyPoint:
 
 @dataclass(frozen=True)
 class ReactionFitSpec:
-    """The c_curve parameters of one reaction (T_upper_C and C_CURVE_PARAMETERS): values (start or fixed), their
-    sources, and which are free."""
+    """The c_curve parameters of one reaction (T_upper_C and C_CURVE_PARAMETERS, or n_nodes_T_C and n_nodes in place of
+    n and n_per_K): values (start or fixed; the n(T) nodes as tuples), their sources, and which are free."""
 
     reaction: str
     T_ref_C: float
-    values: Mapping[str, float]
+    values: Mapping[str, float | tuple[float, ...]]
     sources: Mapping[str, str]
     free: tuple[str, ...]
     tau_factor: float = 1.0
@@ -364,21 +368,35 @@ def _fit_spec(r: _Reader, reaction: str, table: Any) -> ReactionFitSpec:
     if not isinstance(table, Mapping):
         raise r.error(where, table, "must be a table")
     for key in table:
-        if key not in (*FITTABLE, "T_ref_C", "free", "calibration_tau_factor"):
-            raise r.error(f"{where}.{key}", table[key], f"unknown entry; allowed: {', '.join(FITTABLE)}, T_ref_C, free, "
-                                                       "calibration_tau_factor")
+        if key not in (*FITTABLE, *N_NODES, "T_ref_C", "free", "calibration_tau_factor"):
+            raise r.error(f"{where}.{key}", table[key], f"unknown entry; allowed: {', '.join(FITTABLE)}, n_nodes_T_C, "
+                                                       "T_ref_C, free, calibration_tau_factor")
+    nodes = any(key in table for key in N_NODES)
+    exponent = N_NODES if nodes else ("n", "n_per_K")
+    for key in ("n", "n_per_K") if nodes else N_NODES:
+        if key in table:
+            raise r.error(f"{where}.{key}", table[key], "give n (and n_per_K) or n_nodes_T_C with n_nodes, not both")
     values, sources = {}, {}
-    for key in ("T_upper_C", "T_ref_C", *C_CURVE_PARAMETERS):
+    for key in ("T_upper_C", "T_ref_C", *C_CURVE_PARAMETERS[:3], *exponent):
+        spec = table.get(key)
+        sources[key] = spec.get("source", "") if isinstance(spec, Mapping) else ""
         if key == "n_per_K" and key not in table:
             values[key], sources[key] = 0.0, "held constant (n independent of T)"
-            continue
-        values[key] = r.number(table, key, where)
-        spec = table[key]
-        sources[key] = spec.get("source", "") if isinstance(spec, Mapping) else ""
+        elif key not in N_NODES:
+            values[key] = r.number(table, key, where)
+    if nodes:
+        try:
+            checked = n_exponent_nodes(table.get("n_nodes_T_C"), table.get("n_nodes"), where)
+        except InputError as exc:
+            raise r.error(exc.field, exc.value, exc.allowed) from None
+        values.update({k: tuple(float(x) for x in v) for k, v in checked.items()})
     free = table.get("free", [])
-    if not isinstance(free, list) or any(p not in FITTABLE for p in free):
-        raise r.error(f"{where}.free", free, f"must list parameters among {', '.join(FITTABLE)}")
-    for key in FITTABLE:
+    fittable = [k for k in FITTABLE if k not in ("n", "n_per_K", "n_nodes") or k in exponent]
+    if not isinstance(free, list) or any(p not in fittable for p in free):
+        raise r.error(f"{where}.free", free, f"must list parameters among {', '.join(fittable)}")
+    if nodes and not sources["n_nodes_T_C"]:
+        raise r.error(f"{where}.n_nodes_T_C", values["n_nodes_T_C"], "the node temperatures need { value = [...], source = ... }")
+    for key in fittable:
         if key not in free and not sources[key]:
             raise r.error(f"{where}.{key}", values[key], "a parameter the fit holds fixed needs { value = ..., source = ... }")
     if not values["T_ref_C"] < values["T_upper_C"]:

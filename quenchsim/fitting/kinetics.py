@@ -73,17 +73,18 @@ class Residual:
 class FitResult:
     data: DiagramData
     kinetics: Kinetics
-    parameters: dict[str, dict[str, float]]
-    std_errors: dict[str, dict[str, float]]
+    parameters: dict[str, dict[str, float | tuple[float, ...]]]
+    std_errors: dict[str, dict[str, float | tuple[float, ...]]]
     residuals: list[Residual]
     cost: float
 
 
 # -- the model along data ---------------------------------------------------------------------------
 
-def c_curve_reaction(spec: ReactionFitSpec, values: Mapping[str, float], source: str = "fit") -> Reaction:
-    """The ``c_curve`` Reaction of a fit spec with the given parameter values."""
-    params = {"T_ref_C": spec.T_ref_C, "n_per_K": 0.0, **{k: float(v) for k, v in values.items() if k != "T_upper_C"}}
+def c_curve_reaction(spec: ReactionFitSpec, values: Mapping[str, float | tuple[float, ...]], source: str = "fit") -> Reaction:
+    """The ``c_curve`` Reaction of a fit spec with the given parameter values (n(T) nodes as arrays)."""
+    params = {"T_ref_C": spec.T_ref_C, "n_per_K": 0.0,
+              **{k: np.array(v) if isinstance(v, tuple) else float(v) for k, v in values.items() if k != "T_upper_C"}}
     return Reaction(model="c_curve", source=source, T_upper_C=float(values["T_upper_C"]), params=params)
 
 
@@ -222,13 +223,23 @@ def base_kinetics(data: DiagramData) -> Kinetics:
     return load_kinetics(material, data.T_aust_C)
 
 
-def _unpack(data: DiagramData, x: np.ndarray) -> dict[str, dict[str, float]]:
+def _free_entries(data: DiagramData) -> list[tuple[str, str, int | None]]:
+    """(reaction, parameter, node index or None) of every free number, in the order of the fit vector."""
+    return [(r, p, k) for r, spec in data.fit.items() for p in spec.free
+            for k in (range(len(spec.values[p])) if isinstance(spec.values[p], tuple) else (None,))]
+
+
+def _label(r: str, p: str, k: int | None) -> str:
+    return f"{r}.{p}" if k is None else f"{r}.{p}[{k}]"
+
+
+def _unpack(data: DiagramData, x: np.ndarray) -> dict[str, dict[str, float | tuple[float, ...]]]:
     values = {r: dict(spec.values) for r, spec in data.fit.items()}
-    i = 0
-    for r, spec in data.fit.items():
-        for name in spec.free:
-            values[r][name] = float(np.exp(x[i])) if name == "tau_ref_s" else float(x[i])
-            i += 1
+    for (r, name, k), xi in zip(_free_entries(data), x):
+        if k is None:
+            values[r][name] = float(np.exp(xi)) if name == "tau_ref_s" else float(xi)
+        else:
+            values[r][name] = (*values[r][name][:k], float(xi), *values[r][name][k + 1:])
     return values
 
 
@@ -241,9 +252,12 @@ def _kinetics_with(base: Kinetics, data: DiagramData, values: Mapping[str, Mappi
 
 
 _BOUNDS = {"T_upper_C": (100.0, 1000.0), "tau_ref_s": (-40.0, 40.0), "undercooling_exponent": (0.1, 12.0),
-           "Q_J_mol": (0.0, 1.0e6), "n": (0.5, 4.0), "n_per_K": (-0.1, 0.1)}
+           "Q_J_mol": (0.0, 1.0e6), "n": (0.5, 4.0), "n_per_K": (-0.1, 0.1), "n_nodes": (1.0, 4.0)}
 """Bounds of the free parameters (tau_ref_s in ln s). n <= 4: the largest Avrami exponent of the theory (3-D growth
-at a constant nucleation rate; Christian, The Theory of Transformations in Metals and Alloys, 2002, ch. 12)."""
+at a constant nucleation rate; Christian, The Theory of Transformations in Metals and Alloys, 2002, ch. 12); the
+nodes of a piecewise n(T) >= 1: interface-controlled growth of pre-existing nuclei in one dimension, the smallest
+exponent of interface-controlled growth (Christian, ch. 12; lower values belong to diffusion-controlled thickening).
+The fitted SUJ2 nodes (1.8-3.5) lie off both bounds."""
 
 
 def fit_kinetics(data: DiagramData, jominy_histories: tuple[np.ndarray, np.ndarray] | None = None) -> FitResult:
@@ -251,10 +265,12 @@ def fit_kinetics(data: DiagramData, jominy_histories: tuple[np.ndarray, np.ndarr
     if not data.fit:
         raise InputError(f"{data.path.name}: fit", None, "name the reactions to fit in [fit.pearlite] / [fit.bainite]")
     base = base_kinetics(data)
-    names = [(r, p) for r, spec in data.fit.items() for p in spec.free]
-    x0 = np.array([np.log(data.fit[r].values[p]) if p == "tau_ref_s" else data.fit[r].values[p] for r, p in names])
-    lo = np.array([data.fit[r].T_ref_C + 1.0 if p == "T_upper_C" else _BOUNDS[p][0] for r, p in names])
-    hi = np.array([_BOUNDS[p][1] for _, p in names])
+    entries = _free_entries(data)
+    names = [_label(*e) for e in entries]
+    x0 = np.array([np.log(data.fit[r].values[p]) if p == "tau_ref_s" else
+                   data.fit[r].values[p] if k is None else data.fit[r].values[p][k] for r, p, k in entries])
+    lo = np.array([data.fit[r].T_ref_C + 1.0 if p == "T_upper_C" else _BOUNDS[p][0] for r, p, _ in entries])
+    hi = np.array([_BOUNDS[p][1] for _, p, _ in entries])
 
     def vector(x: np.ndarray) -> np.ndarray:
         kin = _kinetics_with(base, data, _unpack(data, x))
@@ -262,7 +278,7 @@ def fit_kinetics(data: DiagramData, jominy_histories: tuple[np.ndarray, np.ndarr
 
     n_res = vector(x0).size
     if names and n_res < len(names):
-        raise FitError(f"{data.path.name}: {len(names)} free parameters ({', '.join(f'{r}.{p}' for r, p in names)}) "
+        raise FitError(f"{data.path.name}: {len(names)} free parameters ({', '.join(names)}) "
                        f"but only {n_res} data residuals: the data cannot constrain them; fix some in [fit]")
     x = x0
     std = {r: {} for r in data.fit}
@@ -274,8 +290,9 @@ def fit_kinetics(data: DiagramData, jominy_histories: tuple[np.ndarray, np.ndarr
         dof = max(n_res - len(names), 1)
         scale = max(2.0 * sol.cost / dof, 1.0) if n_res > len(names) else 1.0
         cov = np.linalg.pinv(sol.jac.T @ sol.jac) * scale
-        for (r, p), s in zip(names, np.sqrt(np.diag(cov))):
-            std[r][p] = float(s)  # tau_ref_s: relative (log) standard error; others: absolute
+        for (r, p, k), s in zip(entries, np.sqrt(np.diag(cov))):
+            # tau_ref_s: relative (log) standard error; others: absolute; n(T) nodes: one per node
+            std[r][p] = float(s) if k is None else (*std[r].get(p, ()), float(s))
     values = _unpack(data, x)
     kin = _kinetics_with(base, data, values)
     res = residuals(kin, data, jominy_histories)
@@ -283,25 +300,25 @@ def fit_kinetics(data: DiagramData, jominy_histories: tuple[np.ndarray, np.ndarr
                      cost=0.5 * float(sum(r.residual**2 for r in res)))
 
 
-def _check_identifiable(data: DiagramData, names: list[tuple[str, str]], jac: np.ndarray) -> None:
+def _check_identifiable(data: DiagramData, names: list[str], jac: np.ndarray) -> None:
     norms = np.linalg.norm(jac, axis=0)
-    for (r, p), nrm in zip(names, norms):
+    for name, nrm in zip(names, norms):
         if not nrm > 1e-12:
-            raise FitError(f"{data.path.name}: fit.{r}.{p}: the data cannot constrain this parameter "
+            raise FitError(f"{data.path.name}: fit.{name}: the data cannot constrain this parameter "
                            f"(no data point is sensitive to it); hold it fixed with a sourced value")
     J = jac / norms
     _, s, vt = np.linalg.svd(J, full_matrices=False)
     if s[-1] < CONDITION_LIMIT * s[0]:
         worst = np.argsort(-np.abs(vt[-1]))[:2]
-        pair = " and ".join(f"fit.{names[k][0]}.{names[k][1]}" for k in worst)
+        pair = " and ".join(f"fit.{names[k]}" for k in worst)
         raise FitError(f"{data.path.name}: the data cannot constrain {pair} separately (singular value ratio "
                        f"{s[-1] / s[0]:.1e}); hold one of them fixed with a sourced value")
 
 
 # -- the material file ------------------------------------------------------------------------------
 
-def _fmt(x: float) -> float:
-    return float(f"{x:.6g}")
+def _fmt(x: float | tuple[float, ...]) -> float | list[float]:
+    return [_fmt(v) for v in x] if isinstance(x, tuple) else float(f"{x:.6g}")
 
 
 def fitted_block(result: FitResult, data_file: str) -> str:
@@ -318,7 +335,8 @@ def fitted_block(result: FitResult, data_file: str) -> str:
         for p, v in values.items():
             if p in spec.free:
                 err = result.std_errors[r].get(p, float("nan"))
-                what = f"relative std. error {err:.2g}" if p == "tau_ref_s" else f"std. error {err:.2g}"
+                err = ", ".join(f"{e:.2g}" for e in err) if isinstance(err, tuple) else f"{err:.2g}"
+                what = f"relative std. error {err}" if p == "tau_ref_s" else f"std. error {err}"
                 source = f"fitted to {data_file} ({what})"
             else:
                 source = spec.sources[p]
@@ -339,7 +357,9 @@ def fitted_block(result: FitResult, data_file: str) -> str:
 
 
 def _value(v: Any) -> str:
-    """One TOML value."""
+    """One TOML value (a list of numbers on one line)."""
+    if isinstance(v, list):
+        return "[" + ", ".join(_value(x) for x in v) + "]"
     return tomli_w.dumps({"v": v})[4:].strip()
 
 

@@ -11,8 +11,10 @@ X = 1 - exp(-(t/tau(T))^n(T)) from one of three sources:
 * ``jmak_polynomial``: ln b(T) and n(T) polynomials, X = 1 - exp(-b t^n) (e.g. Furlan et al. 2025);
 * ``ttt_table``: tabulated start/finish times of a TTT diagram, n(T) and tau(T) through both points;
 * ``c_curve``: the C-curve law 1/tau = (1/tau_ref) [(T_u - T)/(T_u - T_ref)]^m exp[-(Q/R)(1/T - 1/T_ref)] with
-  n(T) = n + n_per_K (T - T_ref), whose parameters ``quenchsim material fit`` finds from CCT / TTT / Jominy
-  data (:mod:`quenchsim.fitting.kinetics`); the fit's provenance sits in the sub-table ``fit``.
+  n(T) = n + n_per_K (T - T_ref), or n(T) piecewise linear through values ``n_nodes`` at temperatures
+  ``n_nodes_T_C`` (constant beyond the end nodes: the ``ttt_table`` interpolation of n, on a few nodes), whose
+  parameters ``quenchsim material fit`` finds from CCT / TTT / Jominy data (:mod:`quenchsim.fitting.kinetics`);
+  the fit's provenance sits in the sub-table ``fit``.
 """
 
 from __future__ import annotations
@@ -36,6 +38,9 @@ DIFFUSIONAL = ("pearlite", "bainite")
 
 C_CURVE_PARAMETERS = ("tau_ref_s", "undercooling_exponent", "Q_J_mol", "n", "n_per_K")
 """Parameters of the ``c_curve`` model a fit may free (T_upper_C and T_ref_C are always given)."""
+N_NODES = ("n_nodes_T_C", "n_nodes")
+"""The ``c_curve`` alternative to n, n_per_K: the Avrami exponent at node temperatures, linear in between (a fit may
+free ``n_nodes``; the node temperatures are chosen, like T_ref_C)."""
 
 DEFAULT_SUBSTEP_K = 5.0
 """Largest temperature change (K) of one internal sub-step of :func:`quenchsim.metallurgy.advance`.
@@ -124,6 +129,8 @@ class Reaction:
         if self.model == "li1998":
             return np.asarray(p["n"])  # constant (isokinetic): a scalar broadcasts
         if self.model == "c_curve":
+            if "n_nodes" in p:
+                return np.interp(T, p["n_nodes_T_C"], p["n_nodes"])
             return np.asarray(p["n"]) if p["n_per_K"] == 0.0 else p["n"] + p["n_per_K"] * (T - p["T_ref_C"])
         if self.model == "jmak_polynomial":
             return np.polynomial.polynomial.polyval(T, p["n"])
@@ -250,14 +257,22 @@ def _reaction(table: Any, where: str, composition: Mapping[str, float], grain: f
             raise InputError(f"{where}.n_poly_T_C", table["n_poly_T_C"], f"n(T) must stay > 0 from 0 C to {T_upper:.0f} C")
     elif model == "c_curve":
         params = {"T_ref_C": _number(table, "T_ref_C", where)}
+        nodes = any(key in table for key in N_NODES)
         for key in C_CURVE_PARAMETERS:
+            if nodes and key in ("n", "n_per_K"):
+                if key in table:
+                    raise InputError(f"{where}.{key}", table[key], "give n (and n_per_K) or n_nodes_T_C with n_nodes, not both")
+                continue
             params[key] = 0.0 if key == "n_per_K" and key not in table else _number(table, key, where,
                                                                                    positive=key != "n_per_K")
         if not params["T_ref_C"] < T_upper:
             raise InputError(f"{where}.T_ref_C", params["T_ref_C"], f"must lie below T_upper = {T_upper:g} C")
-        n_ends = params["n"] + params["n_per_K"] * (np.array([0.0, T_upper]) - params["T_ref_C"])
-        if not np.all(n_ends > 0.0):
-            raise InputError(f"{where}.n_per_K", params["n_per_K"], f"n(T) must stay > 0 from 0 C to {T_upper:.0f} C")
+        if nodes:
+            params.update(n_exponent_nodes(table.get("n_nodes_T_C"), table.get("n_nodes"), where))
+        else:
+            n_ends = params["n"] + params["n_per_K"] * (np.array([0.0, T_upper]) - params["T_ref_C"])
+            if not np.all(n_ends > 0.0):
+                raise InputError(f"{where}.n_per_K", params["n_per_K"], f"n(T) must stay > 0 from 0 C to {T_upper:.0f} C")
     elif model == "ttt_table":
         Xs, Xf = _fraction_pair(table, where)
         T = np.asarray(table.get("T_C", []), dtype=float)
@@ -276,6 +291,21 @@ def _reaction(table: Any, where: str, composition: Mapping[str, float], grain: f
     if model == "ttt_table":  # no reaction above the table either
         T_upper = min(T_upper, float(params["T_C"][-1]))
     return Reaction(model=model, source=source, T_upper_C=T_upper, params=params)
+
+
+def n_exponent_nodes(T_C: Any, n: Any, where: str) -> dict[str, np.ndarray]:
+    """Checked node temperatures and Avrami exponents of a piecewise-linear n(T) (values or {value, source} tables)."""
+    T_C, n = (v.get("value") if isinstance(v, Mapping) else v for v in (T_C, n))
+    try:
+        T = np.asarray(T_C, dtype=float)
+        values = np.asarray(n, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{where}.n_nodes", n, "n_nodes_T_C and n_nodes must be lists of numbers") from None
+    if T.ndim != 1 or T.size < 2 or not np.all(np.isfinite(T)) or np.any(np.diff(T) <= 0):
+        raise InputError(f"{where}.n_nodes_T_C", T_C, "must list at least 2 strictly increasing temperatures")
+    if values.shape != T.shape or not np.all(np.isfinite(values)) or np.any(values <= 0):
+        raise InputError(f"{where}.n_nodes", n, f"must be {T.size} positive Avrami exponents (one per n_nodes_T_C)")
+    return {"n_nodes_T_C": T, "n_nodes": values}
 
 
 def _poly(table: Mapping[str, Any], key: str, where: str) -> np.ndarray:
@@ -321,7 +351,8 @@ def load_kinetics(material: dict[str, Any], T_aust_C: float) -> Kinetics:
       ``li1998`` {ln_F, beta_grain, n_undercooling, Q_cal_mol, sigmoid_exponent, X_start, X_finish},
       ``jmak_polynomial`` {ln_b_poly_T_C, n_poly_T_C, time_unit_s} or
       ``ttt_table`` {T_C, t_start_s, t_finish_s, X_start, X_finish} or
-      ``c_curve`` {T_ref_C, tau_ref_s, undercooling_exponent, Q_J_mol, n, optional n_per_K}; plus the upper temperature
+      ``c_curve`` {T_ref_C, tau_ref_s, undercooling_exponent, Q_J_mol, n, optional n_per_K -- or n_nodes_T_C and
+      n_nodes in place of n, n_per_K}; plus the upper temperature
       ``T_upper_C`` (a number) or ``T_upper_formula`` (a linear composition formula).
     * ``[kinetics.martensite]``: ``Ms_C`` or ``Ms_formula``, ``alpha_per_K`` (Koistinen-Marburger).
     * ``[hardness.<phase>]`` for every phase: ``HV`` or Maynier ``composition/base/rate``; optional ``max_HV``.
