@@ -34,7 +34,7 @@ from quenchsim.geometry.profile import MM, Profile
 from quenchsim.io.checkpoint import FORMAT_VERSION as CHECKPOINT_FORMAT
 from quenchsim.io.checkpoint import read_checkpoint, write_checkpoint
 from quenchsim.materials import load_material, thermal_properties, transforms
-from quenchsim.progress import CoolingProgress, RunProgress
+from quenchsim.progress import CoolingProgress, RunProgress, StepState, film_collapse_temperatures
 from quenchsim.results import RunWriter, files
 from quenchsim.results.postprocess import NodalProjection, phase_statistics
 from quenchsim.results.summary import (FinalSection, hardness_summary, probe_times, residual_stress_summary,
@@ -349,7 +349,8 @@ class QuenchRun:
         every_s = 60.0 * case.output.checkpoint_minutes
         last_checkpoint = time.perf_counter()
         plan = stages(case)
-        estimate = CoolingProgress(self.T_aust, case.air.until_max_C, case.air.temperature_C, ctl.dt_max_s)
+        estimate = CoolingProgress(self.T_aust, case.air.until_max_C, case.air.temperature_C, ctl.dt_max_s,
+                                   ctl.max_dT_K, ctl.max_dX, ctl.growth)
         for index in range(position["stage"], len(plan)):
             stage = plan[index]
             if stage.duration_s <= 0.0:     # a stage the case leaves out (no transfer, no air cooling)
@@ -361,6 +362,9 @@ class QuenchRun:
             if position["stage_end_s"] is None:
                 position["stage_end_s"] = self.thermal.time_s + stage.duration_s
             t_end = position["stage_end_s"]
+            later = [(st.duration_s, self._newton_rate_per_s(st) if math.isfinite(st.until_max_C) else None)
+                     for st in plan[index + 1:]]
+            collapse_C = self._film_collapse_C(htc, t_end)
             self.bar.phase(stage.name)
             while self.thermal.time_s < t_end - 1e-9 and float(np.max(self.thermal.T)) > stage.until_max_C:
                 if self.stop.requested or time.perf_counter() - last_checkpoint >= every_s:
@@ -407,14 +411,39 @@ class QuenchRun:
                     self._last_frame_T = self.thermal.T.copy()
                 grow = ctl.growth if limit < 1e-12 else min(ctl.growth, 0.9 / limit)
                 position["dt_s"] = float(np.clip(dt * grow, ctl.dt_min_s, ctl.dt_max_s))
-                clock_left = t_end - self.thermal.time_s + sum(st.duration_s for st in plan[index + 1:])
+                T_surface_C = self.fe.at_facet_qp(self.thermal.T).reshape(-1)
+                austenite = self.thermal.fractions().get("austenite") if self.kin is not None else None
+                now = StepState(counts["steps"], self.thermal.time_s, self.thermal.T, position["dt_s"],
+                                t_end - self.thermal.time_s, math.isfinite(stage.until_max_C), later,
+                                float(np.mean(T_surface_C)), float(np.max(T_surface_C - collapse_C)),
+                                0.0 if austenite is None else float(np.mean(austenite)),
+                                dX / ctl.max_dX > step.max_dT_K / ctl.max_dT_K)
                 self.bar.update(self.thermal.time_s, estimate.fraction(self.thermal.T), counts["steps"],
-                                estimate.steps_left(counts["steps"], self.thermal.time_s, self.thermal.T,
-                                                    position["dt_s"], clock_left, math.isfinite(stage.until_max_C)))
+                                estimate.steps_left(now))
             position["stage"], position["stage_end_s"] = index + 1, None
             self._checkpoint(vtk)
             last_checkpoint = time.perf_counter()
         self.bar.finish(self.thermal.time_s)
+
+    def _newton_rate_per_s(self, stage: Stage) -> float:
+        """The rate ``h A / C`` at which the part would cool in ``stage`` as one lump (Newton's law: the
+        stage's HTC at its end temperature integrated over the cooled surface, over the heat capacity of the
+        part as it is now), for the progress bar's estimate of a later stage's length."""
+        fe, props = self.thermal.fe, self.thermal.props
+        htc = stage_htc(self.case, stage.name, self.points)
+        T_surface = np.full(fe.facet_r_ds.shape, stage.until_max_C)
+        hA = fe.integrate_boundary(htc(T_surface.reshape(-1), self.thermal.time_s).reshape(T_surface.shape))
+        T_qp, X = self.thermal.T_qp, self.thermal.fractions()
+        C = fe.integrate(props.density_kg_m3(T_qp, X) * props.specific_heat_J_kgK(T_qp, X))
+        return hA / C
+
+    def _film_collapse_C(self, htc: Any, time_s: float) -> np.ndarray:
+        """Per cooled-surface quadrature point, the temperature above which ``htc`` (at ``time_s``) is in film
+        boiling (:func:`quenchsim.progress.film_collapse_temperatures`; +inf without a film), for the progress
+        bar's estimate."""
+        n = self.fe.facet_r_ds.size
+        T_grid_C = np.arange(self.T_room, self.T_aust + 10.0, 10.0)
+        return film_collapse_temperatures(T_grid_C, np.array([htc(np.full(n, T), time_s) for T in T_grid_C]))
 
     # -- checkpoints ----------------------------------------------------------------------------
     def _checkpoint(self, vtk: Any) -> None:
