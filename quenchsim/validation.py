@@ -37,6 +37,7 @@ from collections.abc import Callable
 from typing import Any
 
 from quenchsim.errors import InputError
+from quenchsim.fingerprint import code_fingerprint
 
 ROOT = Path(__file__).resolve().parents[1]
 VALIDATION_ROOT = ROOT / "validation"
@@ -328,19 +329,6 @@ def select(studies: list[Study], only: list[str] | None) -> list[Study]:
 
 
 # ------------------------------------------------------------------------------------------- fingerprints
-
-@functools.lru_cache(maxsize=1)
-def code_fingerprint() -> str:
-    """SHA-1 over every source and data file of the package and of ``materials/``: a cached run is reused
-    only if neither its inputs nor the code and data that produced it have changed."""
-    digest = hashlib.sha1()
-    for folder in (ROOT / "quenchsim", ROOT / "materials"):
-        for path in sorted(folder.rglob("*")):
-            if path.suffix in (".py", ".toml") and "__pycache__" not in path.parts:
-                digest.update(path.relative_to(ROOT).as_posix().encode())
-                digest.update(path.read_bytes())
-    return digest.hexdigest()
-
 
 def study_fingerprint(study: Study) -> str:
     """:func:`code_fingerprint` plus ``cases/`` and the study's own folder (its code, cases and targets)."""

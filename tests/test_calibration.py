@@ -270,3 +270,15 @@ def test_calibrate_command_with_a_run_budget_resumes(tmp_path, capsys):
     assert result["runs"] == {"total": first["total"], "ran_now": first["total"] - 3, "cached": 3, "failed": [],
                               "pending": 0}
     assert (tmp_path / "out" / "calibrated" / "SUJ3.toml").is_file()
+
+
+def test_a_failed_run_is_recorded_with_its_error(tmp_path):
+    """A draw that makes the data non-physical (Poisson's ratio of austenite x 1.3 > 0.5 at 850 C) fails in its
+    data check: run_requests records the error by folder name instead of raising, and runs nothing else."""
+    (tmp_path / "ring.toml").write_text(tomli_w.dumps(ring(40.0, 4.0, 8.0, 4.0)))
+    nu = free_input("material.SUJ3.mechanics.elastic.nu.per_phase.austenite")
+    req = request(load_case(tmp_path / "ring.toml"), [nu], [1.3])
+    done = run_requests([req], tmp_path / "runs", workers=0, progress=False)
+    assert done.summaries[req.folder_name()] is None
+    assert list(done.failed) == [req.folder_name()]
+    assert "elastic.nu.per_phase.austenite" in done.failed[req.folder_name()]

@@ -133,6 +133,12 @@ def test_failed_case_is_recorded_and_the_rest_go_on_and_rerun_skips_finished(tmp
     third = run_sweep(changed, tmp_path, workers=0, progress=False)
     assert (third.skipped, third.ran) == (0, 1)
 
+    # nor is a case that another quenchsim version or other material data computed
+    import quenchsim.sweep
+    monkeypatch.setattr(quenchsim.sweep, "code_fingerprint", lambda: "another version")
+    fourth = run_sweep(changed, tmp_path, workers=0, progress=False)
+    assert (fourth.skipped, fourth.ran) == (0, 1)
+
 
 def test_ctrl_c_keeps_every_finished_case_and_a_rerun_does_the_rest(tmp_path):
     spec = make_sweep(small_case(), grid={"quench.time_s": [20.0, 21.0, 22.0]})

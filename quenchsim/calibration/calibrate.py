@@ -50,7 +50,7 @@ class Design:
     runs: int
     ran: int
     cached: int
-    failed: list[str] = field(default_factory=list)
+    failed: dict[str, str] = field(default_factory=dict)
     pending: list[str] = field(default_factory=list)
     run_wall_s: float = 0.0
 

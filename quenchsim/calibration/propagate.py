@@ -10,6 +10,7 @@ summary over those runs. The runs are cached in ``out/uncertainty/`` (a re-run o
 from __future__ import annotations
 
 import json
+import logging
 from pathlib import Path
 from typing import Any
 
@@ -22,6 +23,8 @@ from quenchsim.case import Case
 from quenchsim.errors import InputError
 from quenchsim.results import files
 from quenchsim.sweep import flatten
+
+log = logging.getLogger("quenchsim")
 
 BAND_SKIP = ("solver.", "status", "end_state.time_s")
 """Summary entries that are bookkeeping, not results: no band."""
@@ -106,7 +109,11 @@ def propagate(case: Case, out: str | Path, n: int, posterior: str | Path | None 
     per_draw = [done.summaries.get(r.folder_name()) for r in reqs]
     ok = [s for s in per_draw if s is not None]
     block = {"source": source, "runs": n, "runs_ok": len(ok), "failed": len(done.failed),
-             "inputs": [inp.path for inp in inputs], "band": "5-95 %", "quantities": bands(ok)}
+             "failures": done.failed, "inputs": [inp.path for inp in inputs], "band": "5-95 %", "quantities": bands(ok)}
+    if done.failed:   # a failed draw narrows the band: say which and why (the folders keep what they wrote)
+        name, error = next(iter(done.failed.items()))
+        log.warning("%d of %d uncertainty runs failed (summary.json 'uncertainty.failures'); %s: %s",
+                    len(done.failed), n, name, error)
     summary_path = out / files.SUMMARY_JSON
     if summary_path.is_file():
         summary = json.loads(summary_path.read_text())

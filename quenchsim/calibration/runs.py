@@ -50,12 +50,13 @@ def request(case: Case, inputs: Sequence[FreeInput], factors: Sequence[float]) -
 
 @dataclass
 class DesignOutcome:
-    """Summaries by folder name (None: failed or not run), and what this call ran."""
+    """Summaries by folder name (None: failed or not run), and what this call ran; ``failed``: the error of each
+    run that failed, by folder name."""
 
     summaries: dict[str, dict[str, Any] | None]
     ran: int
     cached: int
-    failed: list[str]
+    failed: dict[str, str]
     pending: list[str]
 
 
@@ -86,14 +87,14 @@ def run_requests(requests: Sequence[RunRequest], runs_dir: Path, workers: int = 
     names = list(todo)
     pending = names[max_runs:] if max_runs is not None else []
     todo = {n: todo[n] for n in names if n not in pending}
-    failed: list[str] = []
+    failed: dict[str, str] = {}
     bar = tqdm(total=len(unique) - len(pending), initial=cached, desc=desc, unit="run", disable=not progress)
 
     def record(name: str, result: Mapping[str, Any]) -> None:
         ok = result["status"] == "ok"
         summaries[name] = result["summary"] if ok else None
         if not ok:
-            failed.append(name)
+            failed[name] = str(result.get("error") or result["status"])
         bar.update(1)
         bar.set_postfix_str(f"{len(failed)} failed" if failed else "")
 

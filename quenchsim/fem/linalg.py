@@ -4,12 +4,19 @@ factorisation both use as a reusable preconditioner for their symmetric positive
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import contextlib
+import ctypes
+import os
+import sys
+from collections.abc import Callable, Iterator
 
 import numpy as np
 import scipy.sparse as sp
 from cholespy import CholeskySolverD, MatrixType
 from numba import njit
+
+_LIBC = ctypes.CDLL(None)
+"""The C library of this process (its ``fflush``)."""
 
 
 def dot(a: np.ndarray, b: np.ndarray) -> float:
@@ -22,6 +29,31 @@ def norm(a: np.ndarray) -> float:
     return float(np.sqrt(dot(a, a)))
 
 
+@contextlib.contextmanager
+def _c_output_silenced() -> Iterator[None]:
+    """Send the process's C-level standard output and error (file descriptors 1 and 2) to the null device for the
+    duration: CHOLMOD prints "CHOLMOD warning: not positive definite" with C stdio before cholespy raises, and that
+    case is an expected branch (the thermal step falls back to LU) whose exception already says it. The C buffers
+    are flushed before the descriptors come back, so nothing printed inside leaks out later."""
+    try:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        saved = [os.dup(1), os.dup(2)]
+    except (OSError, ValueError):    # no descriptors 1/2 (a detached process): nothing to silence
+        yield
+        return
+    try:
+        with open(os.devnull, "w") as null:
+            os.dup2(null.fileno(), 1)
+            os.dup2(null.fileno(), 2)
+            yield
+    finally:
+        _LIBC.fflush(None)
+        for fd, copy in ((1, saved[0]), (2, saved[1])):
+            os.dup2(copy, fd)
+            os.close(copy)
+
+
 class SparseCholesky:
     """Sparse Cholesky factor of a symmetric positive definite matrix (CHOLMOD's, AMD ordering, through
     cholespy). Replaces SuperLU in symmetric mode: on the case-A stress matrix (9882 DOFs, measured in one
@@ -31,8 +63,9 @@ class SparseCholesky:
     def __init__(self, A: sp.spmatrix) -> None:
         A = sp.csr_matrix(A)
         try:
-            self._factor = CholeskySolverD(A.shape[0], A.indptr.astype(np.int32), A.indices.astype(np.int32),
-                                           np.ascontiguousarray(A.data, dtype=float), MatrixType.CSR)
+            with _c_output_silenced():
+                self._factor = CholeskySolverD(A.shape[0], A.indptr.astype(np.int32), A.indices.astype(np.int32),
+                                               np.ascontiguousarray(A.data, dtype=float), MatrixType.CSR)
         except ValueError as exc:  # CHOLMOD: "Matrix is not positive definite!"
             raise np.linalg.LinAlgError(str(exc)) from exc
 

@@ -192,7 +192,8 @@ def _uncertainty_table(run: RunResults) -> list[Item]:
     nominal = dict(flatten(run.summary))
     rows = [[key, nominal.get(key), b["median"], b["p5"], b["p95"]] for key, b in block["quantities"].items()]
     text = (f"{block['runs_ok']} of {block['runs']} full-chain runs with the inputs drawn from the {block['source']}: "
-            + ", ".join(f"`{p}`" for p in block["inputs"]) + ".")
+            + ", ".join(f"`{p}`" for p in block["inputs"]) + "."
+            + "".join(f" Failed draw {name}: {error}." for name, error in block.get("failures", {}).items()))
     return [Item("text", "Uncertainty", text=text),
             Item("table", "Every summary quantity with its band", header=["quantity", "this run", "median", "5 %", "95 %"],
                  rows=rows)]
