@@ -247,6 +247,7 @@ class QuenchRun:
         fixed = case.mechanics.fixed_point_mm
         fixed_m = None if fixed is None else (fixed[0] * MM * self.case_to_hot, fixed[1] * MM * self.case_to_hot)
         self.mech = mechanics.MechanicsSolver(self.section.mesh, self.mech_model, fixed_m) if self.mech_model else None
+        self.mech_ref = (self.thermal.T_qp, self.thermal.fractions())  # the state of the last stress step
         # probe positions are given on the case's section; they move with it to the austenitised geometry
         self.probe_names = [p.name for p in case.probes]
         pts = np.array([[p.r_mm * MM, p.z_mm * MM] for p in case.probes]).reshape(-1, 2)
@@ -386,8 +387,7 @@ class QuenchRun:
                 if limit > 2.0 and dt / 2 >= ctl.dt_min_s:
                     position["dt_s"], counts["rejected"] = dt / 2, counts["rejected"] + 1
                     continue
-                with self.timer("mechanics_s"):
-                    converged = self._mechanics_step(step.T_qp, step.phase_state.fractions)
+                converged = self._mechanics_with(step)
                 if not converged:
                     if dt / 2 < ctl.dt_min_s:
                         raise SolverError(f"the stress solver did not converge at t = {self.thermal.time_s:.4g} s "
@@ -406,6 +406,7 @@ class QuenchRun:
                 # a frame per 1/frames of the whole cooling, measured by the mean nodal change (the
                 # max-norm counted the fast surface swings: ~260 frames for 40 requested)
                 if float(np.mean(np.abs(self.thermal.T - self._last_frame_T))) >= frame_dT:
+                    self._mechanics_catch_up()
                     with self.timer("output_s"):
                         vtk.write(self.thermal.time_s, self.nodal_fields())
                     self._last_frame_T = self.thermal.T.copy()
@@ -420,6 +421,7 @@ class QuenchRun:
                                 dX / ctl.max_dX > step.max_dT_K / ctl.max_dT_K)
                 self.bar.update(self.thermal.time_s, estimate.fraction(self.thermal.T), counts["steps"],
                                 estimate.steps_left(now))
+            self._mechanics_catch_up()
             position["stage"], position["stage_end_s"] = index + 1, None
             self._checkpoint(vtk)
             last_checkpoint = time.perf_counter()
@@ -455,6 +457,7 @@ class QuenchRun:
                              "last_frame_T": self._last_frame_T, "mesh_p": self.section.mesh.p}}
             if self.mech is not None:
                 state["mechanics"] = self.mech.checkpoint_state()
+                state["mechanics_ref"] = {"T_qp": self.mech_ref[0], "fractions": self.mech_ref[1]}
             header = {"case": self.case.resolved(), "position": self.position, "counts": self.counts,
                       "frames": vtk.frames, "wall_time_s": time.perf_counter() - self.wall0,
                       "timings_s": self.timings, "time_s": self.thermal.time_s}
@@ -470,6 +473,12 @@ class QuenchRun:
         self.thermal.restore_state(state["thermal"], self.phase_model.restore_state(state["phases"]))
         if self.mech is not None:
             self.mech.restore_state(state["mechanics"])
+            ref = state["mechanics_ref"]
+            T_ref, X_ref = np.array(ref["T_qp"]), {p: np.array(v) for p, v in ref["fractions"].items()}
+            X_now = self.thermal.fractions()
+            in_step = np.array_equal(T_ref, self.thermal.T_qp) and X_ref.keys() == X_now.keys() and all(
+                np.array_equal(v, X_now[p]) for p, v in X_ref.items())
+            self.mech_ref = (self.thermal.T_qp, X_now) if in_step else (T_ref, X_ref)
         self.times = [float(t) for t in state["run"]["times"]]
         self.probe_rows = list(np.asarray(state["run"]["probe_rows"]).reshape(len(self.times), -1))
         self._last_frame_T = np.array(state["run"]["last_frame_T"])
@@ -487,6 +496,11 @@ class QuenchRun:
             self._equilibrate_at_room_temperature()
             return {"at_room_temperature": True, "time_s": float(self.thermal.time_s),
                     "max_temperature_before_closing_C": T_max}
+        try:   # the stresses of the last thermal state (a failed or interrupted run; the checkpoint is written)
+            self._mechanics_catch_up()
+        except SolverError as exc:
+            log.error("stresses and dimensions are those at the last stress step before t = %.4g s: %s",
+                      self.thermal.time_s, exc)
         note = ("the part is still hot: temperatures, phases, hardness, dimensions and stresses are those at the "
                 "end of the last stage, not of the cooled part")
         if closing_step:
@@ -505,10 +519,67 @@ class QuenchRun:
             self.timings[key] = self.timings.get(key, 0.0) + time.perf_counter() - t0
 
     def _mechanics_step(self, T_qp: np.ndarray, fractions: dict[str, np.ndarray]) -> bool:
+        """One stress step from the state of the last one (``self.mech_ref``) to (T_qp, fractions)."""
         if self.mech is None:
             return True
-        info = self.mech.step(T_qp, fractions, self.thermal.T_qp, self.thermal.fractions())
-        return bool(info.converged)
+        T_ref, X_ref = self.mech_ref
+        converged = bool(self.mech.step(T_qp, fractions, T_ref, X_ref).converged)
+        if converged:
+            self.mech_ref = (T_qp, fractions)
+            self.counts["stress_steps"] = self.counts.get("stress_steps", 0) + 1
+        return converged
+
+    def _beyond_mechanics_limits(self, T_qp: np.ndarray, fractions: dict[str, np.ndarray]) -> bool:
+        """Whether the change from the last stress step to (T_qp, fractions) exceeds ``time.mechanics_max_dT_K``
+        or ``time.mechanics_max_dX``."""
+        ctl = self.case.time
+        T_ref, X_ref = self.mech_ref
+        if float(np.max(np.abs(T_qp - T_ref))) > ctl.mechanics_max_dT_K:
+            return True
+        return any(float(np.max(np.abs(X - X_ref.get(p, 0.0)))) > ctl.mechanics_max_dX for p, X in fractions.items())
+
+    def _mechanics_with(self, step: Any) -> bool:
+        """The stress solver's part of a thermal step about to be committed (multirate: the stress solver is
+        rate-independent, so it steps only when the change since its last step would exceed the time.mechanics_*
+        limits). The thermal steps since its last step are first caught up to the committed state, then ``step``
+        is taken when it alone exceeds the limits. False when that last stress step does not converge (the
+        caller cuts the thermal step, as when every step is a stress step)."""
+        if self.mech is None or not self._beyond_mechanics_limits(step.T_qp, step.phase_state.fractions):
+            return True
+        self._mechanics_catch_up()  # raises SolverError if even sub-steps fail (committed steps cannot be cut)
+        if not self._beyond_mechanics_limits(step.T_qp, step.phase_state.fractions):
+            return True
+        with self.timer("mechanics_s"):
+            return self._mechanics_step(step.T_qp, step.phase_state.fractions)
+
+    def _mechanics_catch_up(self) -> None:
+        """Bring the stress solver to the committed thermal state (its change since the last stress step spans
+        committed thermal steps, which cannot be cut: :meth:`_mechanics_to` splits it if need be)."""
+        if self.mech is not None:
+            self._mechanics_to(self.thermal.T_qp, self.thermal.fractions(),
+                               f"catching up to t = {self.thermal.time_s:.4g} s")
+
+    def _mechanics_to(self, T_end: np.ndarray, X_end: dict[str, np.ndarray], what: str) -> None:
+        """Stress steps from the last one's state to (T_end, X_end): one step, or, when it does not converge,
+        sub-steps along the straight path between the two states (halving down to 1/64 of the change)."""
+        T_ref, X_ref = self.mech_ref
+        if T_end is T_ref and X_end is X_ref:
+            return
+        with self.timer("mechanics_s"):
+            done, share = 0.0, 1.0
+            while done < 1.0:
+                s = min(1.0, done + share)
+                T = T_ref + s * (T_end - T_ref) if s < 1.0 else T_end
+                X = ({p: X_ref.get(p, 0.0) + s * (v - X_ref.get(p, 0.0)) for p, v in X_end.items()} if s < 1.0
+                     else X_end)
+                if self._mechanics_step(T, X):
+                    done = s
+                    continue
+                share /= 2.0
+                if share < 1.0 / 64.0:
+                    raise SolverError(f"the stress solver did not converge {what} even in sub-steps of 1/64 of the "
+                                      "change since its last step")
+                log.warning("stress Newton did not converge %s; sub-steps of %g of the change", what, share)
 
     def _equilibrate_at_room_temperature(self) -> None:
         """Final state: the whole ring at room temperature (the air stage ended with the hottest point below
@@ -520,8 +591,8 @@ class QuenchRun:
         T_room = np.full(self.thermal.T.shape, self.T_room)
         T_qp = self.fe.at_qp(T_room)
         state = self.phase_model.advance(self.thermal.phase_state, self.thermal.T_qp, T_qp, 0.0)
-        if not self._mechanics_step(T_qp, state.fractions):
-            raise SolverError("the stress solver did not converge in the final step to room temperature")
+        if self.mech is not None:
+            self._mechanics_to(T_qp, state.fractions, "in the final step to room temperature")
         self.thermal.T, self.thermal.T_qp, self.thermal.phase_state = T_room, T_qp, state
 
     # -- the final part -------------------------------------------------------------------------
@@ -619,7 +690,8 @@ class QuenchRun:
             out.update(self.mechanics_summary(final))
         out["energy"] = {"heat_extracted_J": self.counts["heat_out_J"], "latent_released_J": self.counts["latent_J"]}
         out["solver"] = {"wall_time_s": time.perf_counter() - wall0, "stage_time_s": dict(self.timings),
-                         "steps": self.counts["steps"], "rejected_steps": self.counts["rejected"], "dofs": int(self.fe.n_dofs),
+                         "steps": self.counts["steps"], "rejected_steps": self.counts["rejected"],
+                         "stress_steps": self.counts.get("stress_steps", 0), "dofs": int(self.fe.n_dofs),
                          "elements": int(self.section.n_elements), "end_time_s": float(self.thermal.time_s)}
         return out
 

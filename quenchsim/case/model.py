@@ -85,11 +85,15 @@ class AirStage:
 
 @dataclass(frozen=True)
 class TimeControl:
-    """Adaptive step control (the mechanics takes the same steps).
+    """Adaptive step control.
 
-    A step is limited by the largest nodal temperature change (``max_dT_K``, K) and the largest change of a
-    diffusional product's fraction (``max_dX``: pearlite, bainite; martensite follows the temperature and is
-    limited through ``max_dT_K``); it grows by at most ``growth`` per step between ``dt_min_s`` and ``dt_max_s``.
+    A thermal step is limited by the largest nodal temperature change (``max_dT_K``, K) and the largest change
+    of a diffusional product's fraction (``max_dX``: pearlite, bainite; martensite follows the temperature and
+    is limited through ``max_dT_K``); it grows by at most ``growth`` per step between ``dt_min_s`` and
+    ``dt_max_s``. The stress solver (rate-independent: its increments depend on the changes of temperature and
+    phases, not on time) takes one step over as many thermal steps as keep the change since its last step
+    within ``mechanics_max_dT_K`` (K, at any quadrature point) and ``mechanics_max_dX`` (any phase fraction,
+    martensite included); 0 steps it with every thermal step.
     The defaults keep the time-discretisation error of ring A condition 1 within the project's tolerances
     (validation/quench/convergence)."""
 
@@ -99,6 +103,8 @@ class TimeControl:
     max_dT_K: float
     max_dX: float
     growth: float
+    mechanics_max_dT_K: float
+    mechanics_max_dX: float
 
 
 @dataclass(frozen=True)
@@ -174,7 +180,7 @@ class Case:
             overrides["mesh.size_mm"] = self.mesh.size_mm * mesh
             overrides["mesh.surface_size_mm"] = self.mesh.surface_size_mm * mesh
         if step != 1.0:
-            for key in ("max_dT_K", "max_dX", "dt_initial_s"):
+            for key in ("max_dT_K", "max_dX", "dt_initial_s", "mechanics_max_dT_K", "mechanics_max_dX"):
                 overrides[f"time.{key}"] = getattr(self.time, key) * step
         return self.with_overrides(overrides)
 

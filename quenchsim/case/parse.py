@@ -30,7 +30,7 @@ DEFAULTS: dict[str, Any] = {
     "air": {"temperature_C": 25.0, "until_max_C": 40.0, "time_s": 20000.0, "htc_model": "natural",
             "emissivity": 0.8},
     "time": {"dt_initial_s": 0.02, "dt_min_s": 1e-3, "dt_max_s": 120.0, "max_dT_K": 20.0, "max_dX": 0.002,
-             "growth": 1.5},
+             "growth": 1.5, "mechanics_max_dT_K": 20.0, "mechanics_max_dX": 0.02},
     "output": {"frames": 40, "checkpoint_minutes": 5.0},
     "mechanics": {"enabled": True, "plasticity": True, "trip": True},
 }
@@ -43,7 +43,8 @@ TABLE_KEYS: dict[str, tuple[str, ...]] = {
     "transfer": ("time_s", "temperature_C", "emissivity"),
     "quench": ("time_s", "htc_model", "bath", "htc_table", "immersion_speed_mm_s"),
     "air": ("temperature_C", "until_max_C", "time_s", "htc_model", "emissivity", "htc_table"),
-    "time": ("dt_initial_s", "dt_min_s", "dt_max_s", "max_dT_K", "max_dX", "growth"),
+    "time": ("dt_initial_s", "dt_min_s", "dt_max_s", "max_dT_K", "max_dX", "growth", "mechanics_max_dT_K",
+             "mechanics_max_dX"),
     "output": ("frames", "checkpoint_minutes"),
 }
 """Known keys of each table (a key not listed is an error: a misspelt key must not be ignored)."""
@@ -268,7 +269,11 @@ def _time(data: Mapping[str, Any]) -> TimeControl:
     require(growth > 1.0, "time.growth", growth, "must be > 1")
     require(values["dt_min_s"] <= values["dt_max_s"], "time.dt_min_s", values["dt_min_s"],
             f"must not exceed time.dt_max_s = {values['dt_max_s']:g}")
-    return TimeControl(growth=growth, **values)
+    # 0 steps the mechanics with every thermal step
+    mechanics_max_dT_K = _number(t, "mechanics_max_dT_K", "time.mechanics_max_dT_K", minimum=0.0, maximum=200.0)
+    mechanics_max_dX = _number(t, "mechanics_max_dX", "time.mechanics_max_dX", minimum=0.0, maximum=1.0)
+    return TimeControl(growth=growth, mechanics_max_dT_K=mechanics_max_dT_K, mechanics_max_dX=mechanics_max_dX,
+                       **values)
 
 
 def _mechanics(data: Mapping[str, Any], material: str, process: ProcessSpec) -> MechanicsOptions:
