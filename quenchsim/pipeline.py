@@ -351,7 +351,7 @@ class QuenchRun:
         last_checkpoint = time.perf_counter()
         plan = stages(case)
         estimate = CoolingProgress(self.T_aust, case.air.until_max_C, case.air.temperature_C, ctl.dt_max_s,
-                                   ctl.max_dT_K, ctl.max_dX, ctl.growth)
+                                   ctl.max_dT_K, ctl.max_dX, ctl.growth, ctl.mechanics_max_dT_K, ctl.mechanics_max_dX)
         for index in range(position["stage"], len(plan)):
             stage = plan[index]
             if stage.duration_s <= 0.0:     # a stage the case leaves out (no transfer, no air cooling)
@@ -419,8 +419,11 @@ class QuenchRun:
                                 float(np.mean(T_surface_C)), float(np.max(T_surface_C - collapse_C)),
                                 0.0 if austenite is None else float(np.mean(austenite)),
                                 dX / ctl.max_dX > step.max_dT_K / ctl.max_dT_K)
-                self.bar.update(self.thermal.time_s, estimate.fraction(self.thermal.T), counts["steps"],
-                                estimate.steps_left(now))
+                steps_left = estimate.steps_left(now)
+                stress_s, solve_s = self.timings.get("mechanics_s", 0.0), self.timings.get("thermal_metallurgy_s", 0.0)
+                self.bar.update(self.thermal.time_s, estimate.fraction(self.thermal.T), counts["steps"], steps_left,
+                                counts.get("stress_steps", 0), estimate.stress_steps_left(now, steps_left),
+                                stress_s / max(stress_s + solve_s, 1e-300))
             self._mechanics_catch_up()
             position["stage"], position["stage_end_s"] = index + 1, None
             self._checkpoint(vtk)

@@ -15,17 +15,27 @@ from tqdm import TqdmWarning
 
 from quenchsim.case import case_from_dict, load_case
 from quenchsim.pipeline import QuenchRun
-from quenchsim.progress import STEPS, CoolingProgress, RunProgress, StepState, film_collapse_temperatures
+from quenchsim.progress import STEPS, CoolingProgress, RunProgress, StepState, TimeLeft, film_collapse_temperatures
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
+class ThermalStepProgress(RunProgress):
+    """The bar on a clock that counts the thermal steps: the time per step is one, and the split of the time per
+    thermal and per stress step (measured on the wall clock) does not apply."""
+
+    def update(self, time_s, fraction, steps_done, steps_left, *stress_steps):
+        super().update(time_s, fraction, steps_done, steps_left)
+
+
 def recorded_run(case, out, clock=time.process_time):
     """Run ``case`` with the estimate on ``clock`` (default the process's CPU time, which other processes' load
-    does not move; ``"steps"``: the steps taken, which checks the model of the steps left alone)."""
+    does not move; ``"steps"``: the thermal steps taken, which checks the model of the steps left alone)."""
     run = QuenchRun(case, out, progress=False)
-    run.bar = RunProgress(case.name, 1.0, enabled=False,
-                          clock=(lambda: float(run.counts["steps"])) if clock == "steps" else clock)
+    if clock == "steps":
+        run.bar = ThermalStepProgress(case.name, 1.0, enabled=False, clock=lambda: float(run.counts["steps"]))
+    else:
+        run.bar = RunProgress(case.name, 1.0, enabled=False, clock=clock)
     run.run()
     history = np.array(run.bar.time_left.history)     # (elapsed, fraction, raw estimate, estimate) per step
     return history[:, 0], history[:, 3], history[-1, 0]
@@ -84,6 +94,30 @@ def test_a_later_stage_that_ends_on_temperature_counts_its_newton_time_at_dt_max
     assert progress.steps_left(now) == pytest.approx((3.0 + math.log(80.0 / 20.0) / 0.01) / 0.5)
 
 
+def test_the_stress_steps_left_count_the_mechanics_limits_and_never_exceed_the_thermal_steps():
+    """Closed form, no film: (surface drop + hottest drop) / (0.9 mechanics_max_dT_K) + austenite left /
+    (0.9 mechanics_max_dX) + the growth steps to dt_max; limits of 0 (a stress step per thermal step) give the
+    thermal steps."""
+    now = StepState(steps_done=100, time_s=20.0, T_nodes_C=np.array([300.0, 500.0]), dt_next_s=1.0,
+                    stage_clock_left_s=1e4, ends_on_temperature=False, surface_mean_C=300.0, austenite_fraction=0.5)
+    multirate = CoolingProgress(850.0, 40.0, 20.0, dt_max_s=8.0, max_dT_K=20.0, max_dX=0.002, growth=2.0,
+                                mechanics_max_dT_K=20.0, mechanics_max_dX=0.02)
+    expected = (260.0 + 460.0) / 18.0 + 0.5 / 0.018 + 3.0
+    assert multirate.stress_steps_left(now, 1e4) == pytest.approx(expected)
+    assert multirate.stress_steps_left(now, 50.0) == 50.0
+    every_step = CoolingProgress(850.0, 40.0, 20.0, dt_max_s=8.0, max_dT_K=20.0, max_dX=0.002, growth=2.0)
+    assert every_step.stress_steps_left(now, 1234.0) == 1234.0
+
+
+def test_the_time_left_prices_thermal_and_stress_steps_apart():
+    """10 s for 100 thermal steps of which 20 were stress steps taking 60 % of the time: 0.04 s per thermal step and
+    0.3 s per stress step, so 50 thermal steps left with 5 stress steps cost 2 + 1.5 s."""
+    clock = iter([0.0, 10.0])
+    time_left = TimeLeft(clock=lambda: next(clock), warmup_fraction=0.0)
+    assert time_left.update(0.5, 0, 1.0, 0, 0.0, 0.0) is None          # the first call sets the origin
+    assert time_left.update(0.6, 100, 50.0, 20, 5.0, 0.6) == pytest.approx(0.04 * 50 + 0.3 * 5)
+
+
 def test_a_boiling_curve_has_a_film_collapse_temperature_and_convection_has_none():
     """The peer's water table (h peaks at 430 C, falls to a thirtieth by 800 C): on a 10 K grid the highest
     temperature with h at a quarter of its peak or more is 680 C (linear between 2507 W/m2K at 700 C and 7793 at
@@ -97,15 +131,16 @@ def test_a_boiling_curve_has_a_film_collapse_temperature_and_convection_has_none
 
 @pytest.mark.slow
 @pytest.mark.parametrize("overrides, measured, required",
-                         [({}, "0.71-0.76 (0.39..3.1); the model before 0.68 (0.39..2.8) counted in steps", 0.6),
-                          ({"time.max_dX": 0.01}, "0.85-1.00", 0.85)],
+                         [({}, "0.92-0.95 (0.56..2.37); every step at one cost before: 0.71-0.76 (0.39..3.1)", 0.85),
+                          ({"time.max_dX": 0.01}, "0.84-0.90 (0.65..2.65)", 0.8)],
                          ids=["default", "max_dX_0.01"])
 def test_the_time_left_on_ring_A_is_within_a_factor_2_for_most_of_the_run(tmp_path, overrides, measured, required):
     """Ring A condition 1 (~440 steps of vapour film in oil, then, at the default ``time.max_dX = 0.002``, ~600
     steps held by the pearlite/bainite limit, then ~80 to the end), two step-control settings (``measured``: the
-    share, and the range of estimate / real time left, on the CPU clock). At the default the share is a KNOWN
-    SHORTFALL of the issue's factor-2 goal (issue 20 item 6 open): nothing seen during the quench says that ~600
-    steps of diffusional transformation will follow, so the never-rising estimate starts ~0.4x low."""
+    share, and the range of estimate / real time left, on the CPU clock). Nothing seen during the quench says that
+    ~600 steps of diffusional transformation follow; since they carry few stress steps (multirate) and the estimate
+    prices thermal and stress steps apart, the estimate starts ~0.56x low instead of ~0.4x. The ratio passes 2 in
+    the last ~10 % of the run: a KNOWN SHORTFALL of the issue's factor-2 goal (issue 20 item 6 open)."""
     case = load_case(ROOT / "cases" / "crb_outer_ring.toml", "1", overrides=overrides)
     elapsed, estimate, end = recorded_run(case, tmp_path)
     assert np.all(np.diff(estimate) <= 0.0)
@@ -118,13 +153,13 @@ def test_the_time_left_on_ring_A_is_within_a_factor_2_for_most_of_the_run(tmp_pa
 def test_the_time_left_on_the_peer_race_is_within_a_factor_2_for_most_of_the_run(tmp_path):
     """The peer race in water (a vapour film that holds ~190 of its ~310 steps while the mean hardly moves, then
     collapses within 0.3 s over most of the surface). Measured with ``time.max_dX = 0.1`` (limiting every phase,
-    the former default) 1.00 (0.63..1.30), the model before 0.35; at today's default 0.27 (0.93..4.1; the model
-    before 0.13 counted in steps; 0.16-0.27 over recordings, the CPU pace depending on what ran before): a KNOWN
-    SHORTFALL (issue 20 item 6 open). The count of the steps the pearlite/bainite limit may still need (the
+    the former default) 1.00 (0.63..1.30), the model before 0.35; at today's default, with thermal and stress steps
+    priced apart (multirate), 0.35-0.39 (1.14..2.95; every step at one cost before: 0.16-0.27, up to 4-6x high): a
+    KNOWN SHORTFALL (issue 20 item 6 open). The count of the steps the pearlite/bainite limit may still need (the
     austenite left over 0.9 max_dX) is what ring A needs and what this martensitic race never takes: the estimate
-    errs high (4-6x until the film has collapsed; low end 0.93-1.20), never low -- which is what is asserted."""
+    errs high (up to 3x until the film has collapsed), never low -- which is what is asserted."""
     elapsed, estimate, end = recorded_run(load_case(ROOT / "cases" / "peer_race_100Cr6.toml"), tmp_path)
     assert np.all(np.diff(estimate) <= 0.0)
     share, low, high = within_factor_2(elapsed, estimate, end)
     print(f"peer race: share {share:.2f} ({low:.2f}..{high:.2f})")
-    assert low >= 0.5 and high < 7.0, (share, low, high)
+    assert low >= 0.5 and high < 4.0, (share, low, high)
