@@ -1,11 +1,13 @@
 """The staged quench, top to bottom: section -> boundary -> HTC -> stages -> results.
 
 The ring is austenitised (uniform T, stress free), quenched, then cooled in air to room temperature.
-Each time step solves the thermal problem with the phase kinetics inside its fixed-point iteration,
-then (when enabled) the stress problem with the same step. The step starts small, grows under limits
-on the temperature change and the diffusional (pearlite, bainite) phase change per step, and is cut
-back and retried when an iteration does not converge (logged). Probes and VTK frames are written as they are produced; a run that fails keeps them
-and records where it stopped in ``summary.json``.
+Each time step solves the thermal problem with the phase kinetics inside its fixed-point iteration. The step
+starts small, grows under limits on the temperature change and the diffusional (pearlite, bainite) phase change per
+step, and is cut back and retried when an iteration does not converge (logged). The stress problem (when enabled;
+rate-independent) takes one step over as many thermal steps as keep its change within ``time.mechanics_max_dT_K``
+and ``time.mechanics_max_dX`` (multirate), and catches up at every VTK frame, stage end and the end of the run.
+Probes and VTK frames are written as they are produced; a run that fails keeps them and records where it stopped
+in ``summary.json``.
 """
 
 from __future__ import annotations
@@ -382,7 +384,8 @@ class QuenchRun:
                     log.warning("%s; cutting the step to %.3g s", exc, dt / 2)
                     position["dt_s"], counts["rejected"] = dt / 2, counts["rejected"] + 1
                     continue
-                dX = max((step.max_dX_by_phase.get(p, 0.0) for p in self.phase_model.time_dependent_phases), default=0.0)
+                dX = max((step.max_dX_by_phase.get(p, 0.0) for p in self.phase_model.time_dependent_phases),
+                         default=0.0)
                 limit = max(step.max_dT_K / ctl.max_dT_K, dX / ctl.max_dX)
                 if limit > 2.0 and dt / 2 >= ctl.dt_min_s:
                     position["dt_s"], counts["rejected"] = dt / 2, counts["rejected"] + 1

@@ -172,9 +172,9 @@ class ThermalSolver:
         two_pi = 2.0 * np.pi
         heat_out = two_pi * dt_s * fe.integrate_boundary(h * (Ts - ambient))
         latent_J = two_pi * fe.integrate(latent)
-        max_dX = {p: float(np.max(np.abs(X[p] - X0.get(p, 0.0)))) for p in X}
+        max_dX_by_phase = {p: float(np.max(np.abs(X[p] - X0.get(p, 0.0)))) for p in X}
         return ThermalStep(T=T_iter, phase_state=state, T_qp=T_qp, dt_s=dt_s, iterations=it,
-                           max_dT_K=float(np.max(np.abs(T_iter - self.T))), max_dX_by_phase=max_dX,
+                           max_dT_K=float(np.max(np.abs(T_iter - self.T))), max_dX_by_phase=max_dX_by_phase,
                            heat_out_J=heat_out, latent_J=latent_J)
 
     def _latent_J_m3(self, T_qp: np.ndarray, X: dict[str, np.ndarray], X0: dict[str, np.ndarray],
