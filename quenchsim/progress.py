@@ -146,12 +146,13 @@ class CoolingProgress:
         ``mechanics_max_dX`` (the pipeline's multirate stepping), so it takes the film's steps and the temperature
         drops still to come over 90 % of its temperature limit, the transformation left over 90 % of its
         phase-fraction limit and the growth steps -- never more than the thermal steps (limits of 0: all of them)."""
+        if self.mechanics_max_dT_K <= 0.0 or self.mechanics_max_dX <= 0.0:
+            return steps_left
         drop_K = max(now.surface_mean_C - self.T_end_C, 0.0) + max(float(np.max(now.T_nodes_C)) - self.T_end_C, 0.0)
         growth = max(math.log(self.dt_max_s / now.dt_next_s) / math.log(self.growth), 0.0)
-        with np.errstate(divide="ignore"):
-            count = (self._film_steps(now, record=False) + np.divide(drop_K, 0.9 * self.mechanics_max_dT_K)
-                     + np.divide(now.austenite_fraction, 0.9 * self.mechanics_max_dX) + growth)
-        return float(min(steps_left, count))
+        count = (self._film_steps(now, record=False) + drop_K / (0.9 * self.mechanics_max_dT_K)
+                 + now.austenite_fraction / (0.9 * self.mechanics_max_dX) + growth)
+        return min(steps_left, count)
 
     def _film_steps(self, now: StepState, record: bool = True) -> float:
         """The steps until the vapour film collapses everywhere (0 with no film)."""
