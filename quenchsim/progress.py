@@ -150,19 +150,18 @@ class CoolingProgress:
             return steps_left
         drop_K = max(now.surface_mean_C - self.T_end_C, 0.0) + max(float(np.max(now.T_nodes_C)) - self.T_end_C, 0.0)
         growth = max(math.log(self.dt_max_s / now.dt_next_s) / math.log(self.growth), 0.0)
-        count = (self._film_steps(now, record=False) + drop_K / (0.9 * self.mechanics_max_dT_K)
+        count = (self._film_steps(now) + drop_K / (0.9 * self.mechanics_max_dT_K)
                  + now.austenite_fraction / (0.9 * self.mechanics_max_dX) + growth)
         return min(steps_left, count)
 
-    def _film_steps(self, now: StepState, record: bool = True) -> float:
-        """The steps until the vapour film collapses everywhere (0 with no film)."""
+    def _film_steps(self, now: StepState) -> float:
+        """The steps until the vapour film collapses everywhere (0 with no film); records ``now`` in the film's
+        history once (both :meth:`steps_left` and :meth:`stress_steps_left` ask)."""
         if now.film_excess_K <= 0.0:
             self._film = []
             return 0.0
-        if record:
+        if not self._film or self._film[-1][:2] != (now.time_s, now.steps_done):
             self._film.append((now.time_s, now.steps_done, now.film_excess_K))
-        if not self._film:
-            return math.inf
         t0, steps0, _ = self._film[0]
         since = now.time_s - t0
         t1, _, excess1 = next(f for f in self._film if f[0] >= t0 + 0.8 * since)

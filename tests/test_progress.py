@@ -109,6 +109,20 @@ def test_the_stress_steps_left_count_the_mechanics_limits_and_never_exceed_the_t
     assert every_step.stress_steps_left(now, 1234.0) == 1234.0
 
 
+def test_the_stress_steps_left_while_a_film_holds_after_the_phase_change_limit_took_over():
+    """Regression: once the phase-fraction limit has held, :meth:`CoolingProgress.steps_left` no longer looks at the
+    film, so the film's history lacked the latest steps and the stress count raised StopIteration (ring A condition 3
+    with parameters drawn by the calibration, the film still holding somewhere when pearlite began)."""
+    progress = CoolingProgress(850.0, 40.0, 20.0, dt_max_s=120.0, max_dT_K=20.0, max_dX=0.002, growth=1.5,
+                               mechanics_max_dT_K=20.0, mechanics_max_dX=0.02)
+    for steps, time_s, limited in ((10, 1.0, False), (20, 2.0, False), (300, 10.0, True), (400, 12.0, True)):
+        now = StepState(steps_done=steps, time_s=time_s, T_nodes_C=np.array([600.0, 800.0]), dt_next_s=0.1,
+                        stage_clock_left_s=100.0, ends_on_temperature=False, surface_mean_C=600.0,
+                        film_excess_K=60.0 - time_s, austenite_fraction=0.9, limited_by_phase_change=limited)
+        left = progress.steps_left(now)
+        assert 0.0 < progress.stress_steps_left(now, left) <= left
+
+
 def test_the_time_left_prices_thermal_and_stress_steps_apart():
     """10 s for 100 thermal steps of which 20 were stress steps taking 60 % of the time: 0.04 s per thermal step and
     0.3 s per stress step, so 50 thermal steps left with 5 stress steps cost 2 + 1.5 s."""
