@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 import tomli_w
+from conftest import default_ctrl_c
 from test_simulation_final_step import warm_ring
 
 import quenchsim as qs
@@ -116,7 +117,8 @@ def test_kill_at_a_random_time_then_resume_on_the_command_line(tmp_path, sig):
     case_file.write_text(tomli_w.dumps(raw))
     command = [sys.executable, "-m", "quenchsim.cli", "run", str(case_file), "--out", str(tmp_path / "run"), "--quiet"]
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT, env=env)
+    proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT, env=env,
+                            preexec_fn=default_ctrl_c)
     deadline = time.time() + 120
     while time.time() < deadline and not (tmp_path / "run" / files.PROBES_CSV).is_file():
         time.sleep(0.05)

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import tomli_w
+from conftest import default_ctrl_c
 
 from quenchsim.case import case_from_dict
 from quenchsim.pipeline import QuenchRun
@@ -88,7 +89,8 @@ def test_a_signal_leaves_status_interrupted_and_no_traceback(tmp_path, sig):
     out = tmp_path / "run"
     proc = subprocess.Popen([sys.executable, "-m", "quenchsim.cli", "run", str(case), "--out", str(out), "--quiet"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=Path(__file__).parents[1],
-                            env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[1])})
+                            env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[1])},
+                            preexec_fn=default_ctrl_c)
     deadline = time.time() + 120
     while time.time() < deadline and not (out / "probes.csv").is_file():
         time.sleep(0.2)

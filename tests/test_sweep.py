@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 import tomli_w
+from conftest import default_ctrl_c
 
 from quenchsim.errors import InputError
 from quenchsim.sweep import (RESULTS_CSV, case_hash, case_names, finished, load_sweep, make_sweep, read_results,
@@ -181,7 +182,8 @@ def test_killed_sweep_rerun_finishes_only_the_missing_cases(tmp_path, sig):
     n = 10
     sweep, out = _sweep_file(tmp_path, n), tmp_path / "out"
     cmd = [sys.executable, "-m", "quenchsim.cli", "sweep", str(sweep), "--workers", "2", "--out", str(out), "--quiet"]
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+                            preexec_fn=default_ctrl_c)
     try:
         deadline = time.monotonic() + 240
         while not _ok_rows(out / RESULTS_CSV) and proc.poll() is None and time.monotonic() < deadline:
