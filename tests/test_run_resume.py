@@ -1,6 +1,6 @@
 """Checkpoints and ``--resume``: a run stopped at a random step (SIGTERM from inside the step loop, or a signal
 to a CLI process at a random time) and resumed ends with the result of an uninterrupted run (every summary
-number within 1e-6 relative, the same probe rows and VTK frames); a checkpoint of another case is refused."""
+number within 1e-6 relative, the same probe rows and VTK frames); a checkpoint of another case or format is refused."""
 
 import json
 import os
@@ -11,6 +11,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 import tomli_w
 from conftest import default_ctrl_c
@@ -20,6 +21,7 @@ import quenchsim as qs
 from quenchsim.case import case_from_dict
 from quenchsim.cli import main
 from quenchsim.errors import InputError, RunInterrupted
+from quenchsim.io.checkpoint import FORMAT_VERSION as CHECKPOINT_FORMAT
 from quenchsim.results import files
 from quenchsim.thermal.solver import ThermalSolver
 
@@ -163,6 +165,19 @@ def test_resume_refuses_another_case_and_a_folder_without_checkpoint(tmp_path, m
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "its run is of another case (quench.time_s: 10.0 there, 12.0 here)" in err[0], err
     assert sorted(p.name for p in (tmp_path / "run").iterdir()) == before   # nothing touched
+    # a checkpoint of another format version (written by an older quenchsim) is refused by its format
+    checkpoint = tmp_path / "run" / files.CHECKPOINT_NPZ
+    written = checkpoint.read_bytes()
+    with np.load(checkpoint) as data:
+        arrays = dict(data)
+    header = json.loads(str(arrays["__header__"]))
+    arrays["__header__"] = np.array(json.dumps({**header, "format": CHECKPOINT_FORMAT - 1}))
+    np.savez(checkpoint, **arrays)
+    assert main(["run", str(case_file), "--out", str(tmp_path / "run"), "--resume", "--quiet"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"is of checkpoint format {CHECKPOINT_FORMAT - 1}, this version reads " \
+        f"{CHECKPOINT_FORMAT}" in err[0], err
+    checkpoint.write_bytes(written)
     # how often to checkpoint changes no result: resuming with another interval is the same case
     assert main(["run", str(case_file), "--out", str(tmp_path / "run"), "--resume", "--quiet",
                  "--set", "output.checkpoint_minutes=1"]) == 0

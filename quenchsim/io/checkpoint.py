@@ -17,8 +17,9 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 
-FORMAT_VERSION = 1
-"""Written into every checkpoint; a file of another version is not resumed."""
+FORMAT_VERSION = 2
+"""Written into every checkpoint; a file of another version is not resumed. 2: the stress solver's state since
+its last step (multirate stress steps) and the CG iterations since its last factorisation were added."""
 _HEADER = "__header__"
 _NONE = "__none__"
 _CSR = "__csr__"
