@@ -99,7 +99,7 @@ class CoolingProgress:
     :meth:`stress_steps_left` with :class:`TimeLeft`'s split of the time per thermal and per stress step counts
     that: ring A 92-95 % (0.56..2.37), with ``time.max_dX = 0.01`` 84-90 % (0.65..2.65); the ratio passes 2 only in
     the last ~10 % of the run (the air stage's Newton time from the hot mean). The peer race at the default is still
-    35-39 % (1.14..2.95, high and never low: the count of the austenite left over 0.9 max_dX is what ring A needs and
+    29-39 % (1.14..3.03, high and never low: the count of the austenite left over 0.9 max_dX is what ring A needs and
     what this martensitic race never takes); a forecast from the steel's CCT at a Newton-cooled core rate was tried
     and gives ring A's core 0.1-0.35 diffusional instead of 0.67 (the latent-heat plateau slows it further)."""
 
@@ -138,7 +138,7 @@ class CoolingProgress:
         scaled = now.steps_done * (1.0 - fraction) / max(fraction, 1e-9)
         if self._phase_change_limited:
             return max(scaled, at_dt_max)
-        return max(min(scaled, self._film_steps(now) + self._limit_steps(now)), at_dt_max)
+        return max(min(scaled, self._film_steps(now) + self._limit_steps(now, self.max_dT_K, self.max_dX)), at_dt_max)
 
     def stress_steps_left(self, now: StepState, steps_left: float) -> float:
         """The stress steps among the ``steps_left`` thermal steps (:meth:`steps_left` of the same ``now``): the
@@ -148,10 +148,7 @@ class CoolingProgress:
         phase-fraction limit and the growth steps -- never more than the thermal steps (limits of 0: all of them)."""
         if self.mechanics_max_dT_K <= 0.0 or self.mechanics_max_dX <= 0.0:
             return steps_left
-        drop_K = max(now.surface_mean_C - self.T_end_C, 0.0) + max(float(np.max(now.T_nodes_C)) - self.T_end_C, 0.0)
-        growth = max(math.log(self.dt_max_s / now.dt_next_s) / math.log(self.growth), 0.0)
-        count = (self._film_steps(now) + drop_K / (0.9 * self.mechanics_max_dT_K)
-                 + now.austenite_fraction / (0.9 * self.mechanics_max_dX) + growth)
+        count = self._film_steps(now) + self._limit_steps(now, self.mechanics_max_dT_K, self.mechanics_max_dX)
         return min(steps_left, count)
 
     def _film_steps(self, now: StepState) -> float:
@@ -170,12 +167,13 @@ class CoolingProgress:
         film_left_s = now.film_excess_K * (now.time_s - t1) / (excess1 - now.film_excess_K)
         return film_left_s * (now.steps_done - steps0) / since
 
-    def _limit_steps(self, now: StepState) -> float:
-        """The steps the temperature, phase-fraction and growth limits need, one after another."""
+    def _limit_steps(self, now: StepState, max_dT_K: float, max_dX: float) -> float:
+        """The steps a temperature limit ``max_dT_K``, a phase-fraction limit ``max_dX`` and the growth to
+        ``time.dt_max_s`` need, one after another (the thermal step's limits or the stress solver's)."""
         # the temperature limit holds at the surface first, then inside: the two drops one after the other
         drop_K = max(now.surface_mean_C - self.T_end_C, 0.0) + max(float(np.max(now.T_nodes_C)) - self.T_end_C, 0.0)
         growth = max(math.log(self.dt_max_s / now.dt_next_s) / math.log(self.growth), 0.0)
-        return drop_K / (0.9 * self.max_dT_K) + now.austenite_fraction / (0.9 * self.max_dX) + growth
+        return drop_K / (0.9 * max_dT_K) + now.austenite_fraction / (0.9 * max_dX) + growth
 
     def _newton_time_s(self, excess_K: float, rate_per_s: float) -> float:
         """When the mean's excess over the ambient, decaying at ``rate_per_s``, reaches the end's excess."""
