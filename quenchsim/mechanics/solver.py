@@ -69,8 +69,9 @@ class _LinearSolver:
     against 1.5 ms at 0.5, 33,710 DOFs, 113), so the next solve refactorises once the iterations since the last
     factorisation exceed it, and a solve that needs more than ``max_cg`` iterations refactorises at once. The rule
     it replaced (refactorise after any solve of more than 8 iterations) refactorised 117 times on ring A at mesh
-    factor 0.5, where a stale factor needs ~17 iterations a solve; this one spends 9 % less time in the stress
-    solver there and the same at mesh factor 1. K is symmetric positive definite (associative J2 flow, H >= 0,
+    factor 0.5, where a tenth of the solves need 9 iterations or more (mean 5.1, against 4.4 at mesh factor 1;
+    docs/experiments/stress_preconditioner.md); this one spends 9 % less time in the stress solver there and the
+    same at mesh factor 1. K is symmetric positive definite (associative J2 flow, H >= 0,
     rigid modes removed), so CG applies."""
 
     def __init__(self, max_cg: int = 60, budget: int = 100) -> None:
