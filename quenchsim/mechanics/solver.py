@@ -91,7 +91,7 @@ class _LinearSolver:
     def restore_state(self, state: Mapping[str, Any]) -> None:
         """Continue from :meth:`checkpoint_state` (refactorises the kept tangent: the same factor)."""
         self._stale = bool(state["stale"])
-        self._since_factorisation = int(state.get("since_factorisation", 0))
+        self._since_factorisation = int(state["since_factorisation"])
         self._factored_matrix = state.get("factored_matrix")
         self._factor = None if self._factored_matrix is None else SparseCholesky(self._factored_matrix)
 
