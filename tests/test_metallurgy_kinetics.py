@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 
 from quenchsim.materials import load_material
-from quenchsim.metallurgy import advance, initial_state, load_kinetics
+from quenchsim.metallurgy import advance, incubation_share, initial_state, load_kinetics
 from quenchsim.metallurgy.laws import li_sigmoid_integral
 
 R_CAL = 1.98720  # cal/(mol K)
@@ -61,6 +61,22 @@ def test_jmak_isothermal_pearlite_exact_against_li_closed_form():
     assert X[6] == pytest.approx(0.99, rel=1e-4)
     np.testing.assert_allclose(X, expected, rtol=3e-3, atol=1e-12)
     assert n == pytest.approx(2.09, abs=0.01)
+
+
+def test_incubation_share_is_the_held_time_over_the_isothermal_start_time():
+    """Isothermal pearlite at 650 C (Li et al. 1998 written out, as above): after a hold of t the share of the
+    incubation run is t / t(1 %), and 1 once the reaction has started."""
+    kin = _kin("SUJ2_li1998", drop=("bainite",))
+    d = kin.dissolved
+    F = np.exp(-4.25 + 4.12 * d["C"] + 4.36 * d["Mn"] + 0.44 * d["Si"] + 3.33 * d["Cr"])
+    T = 650.0
+    tau1 = F / (2 ** (0.32 * 9) * (724.0 - T) ** 3 * np.exp(-27500.0 / (R_CAL * (T + 273.15))))
+    t_start = tau1 * 0.1043
+    held = _hold(kin, T, np.array([0.25, 0.5, 1.0, 3.0]) * t_start)
+    shares = [incubation_share(state, kin, np.array([T])) for state in held]
+    np.testing.assert_allclose(shares[:3], [0.25, 0.5, 1.0], rtol=3e-3)
+    assert shares[3] == 1.0
+    assert incubation_share(initial_state((2,), kin), kin, np.full(2, T)) == 0.0
 
 
 def test_jmak_isothermal_step_independent():

@@ -38,6 +38,9 @@ MAYNIER_RATE_T_C = 700.0
 Q_MAX = 50.0
 """Cap on q_i = -ln(1 - xi_i): beyond it (xi_i > 1 - 2e-22) the reaction is complete; keeps q^n finite."""
 
+Q_START = -np.log(0.99)
+"""q_i = -ln(1 - xi_i) at the 1 % start of a reaction (xi_i = 0.01)."""
+
 _GAUSS = (0.5 - 0.5 / np.sqrt(3.0), 0.5 + 0.5 / np.sqrt(3.0))
 """2-point Gauss-Legendre abscissae on [0, 1] (equal weights 1/2)."""
 
@@ -56,6 +59,30 @@ class PhaseState:
     additivity: dict[str, np.ndarray]
     T_min_C: np.ndarray
     cooling_rate_700_C_s: np.ndarray
+
+
+def incubation_share(state: PhaseState, kin: Kinetics, T_C: np.ndarray) -> float:
+    """How far the diffusional reactions are from starting: the largest share of its incubation that any point has
+    run for any reaction, the additivity integral I_i = q_i^(1/n_i) (at the point's exponent at ``T_C``) over its
+    value at the 1 % start, q = -ln(0.99); capped at 1 (a point that has started), 0 for a steel without diffusional
+    reactions.
+
+    >>> from quenchsim.materials import load_material
+    >>> from quenchsim.metallurgy.kinetics import load_kinetics
+    >>> kin = load_kinetics(load_material("SUJ2"), 850.0)
+    >>> incubation_share(initial_state((3,), kin), kin, np.full(3, 850.0))
+    0.0
+    """
+    share = 0.0
+    for r, reaction in kin.reactions.items():
+        q = state.additivity[r]
+        if np.max(q, initial=0.0) >= Q_START:
+            return 1.0
+        running = q > 0.0
+        if running.any():
+            n = reaction.exponent(np.asarray(T_C)[running])
+            share = max(share, float(np.max((q[running] / Q_START) ** (1.0 / n))))
+    return share
 
 
 def initial_state(shape: tuple[int, ...], kin: Kinetics) -> PhaseState:
