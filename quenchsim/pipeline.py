@@ -421,7 +421,9 @@ class QuenchRun:
                                 t_end - self.thermal.time_s, math.isfinite(stage.until_max_C), later,
                                 float(np.mean(T_surface_C)), float(np.max(T_surface_C - collapse_C)),
                                 0.0 if austenite is None else float(np.mean(austenite)),
-                                dX / ctl.max_dX > step.max_dT_K / ctl.max_dT_K)
+                                dX / ctl.max_dX > step.max_dT_K / ctl.max_dT_K,
+                                0.0 if self.kin is None else metallurgy.incubation_share(
+                                    self.thermal.phase_state, self.kin, self.thermal.T_qp))
                 steps_left = estimate.steps_left(now)
                 stress_s, solve_s = self.timings.get("mechanics_s", 0.0), self.timings.get("thermal_metallurgy_s", 0.0)
                 self.bar.update(self.thermal.time_s, estimate.fraction(self.thermal.T), counts["steps"], steps_left,

@@ -39,7 +39,8 @@ class StepState:
     (:func:`film_collapse_temperatures`) still is above it (<= 0: no vapour film anywhere);
     ``austenite_fraction``: the mean fraction still to transform (0 for a steel that does not);
     ``limited_by_phase_change``: the phase-fraction limit ``time.max_dX`` held the last step rather than the
-    temperature limit ``time.max_dT_K``."""
+    temperature limit ``time.max_dT_K``; ``incubation_share``: the largest share of its incubation any point has
+    run for a diffusional reaction (:func:`quenchsim.metallurgy.incubation_share`; 1 once one has started)."""
 
     steps_done: int
     time_s: float
@@ -52,6 +53,7 @@ class StepState:
     film_excess_K: float = -math.inf
     austenite_fraction: float = 0.0
     limited_by_phase_change: bool = False
+    incubation_share: float = 0.0
 
 
 class CoolingProgress:
@@ -76,8 +78,9 @@ class CoolingProgress:
       farthest above its film-collapse temperature reaches it at the pace it cools (over the last fifth of the
       film's time); then the surface's and the hottest node's drops to the end temperature (the limit holds at
       the surface first, inside later) over the temperature limit (steps at 90 % of the limit, as the
-      controller aims), the transformation left over the phase-fraction limit and the steps the growth factor
-      needs to reach ``time.dt_max_s``. The scaling alone counts the film's slow
+      controller aims), the austenite left over the phase-fraction limit -- counted as far as the incubation of
+      pearlite or bainite has run at some point (``incubation_share``: the limit holds only those, which form once
+      incubated) -- and the steps the growth factor needs to reach ``time.dt_max_s``. The scaling alone counts the film's slow
       steps for all the cooling after it, which goes far faster once the film collapses.
 
     The estimate shown never rises (:class:`TimeLeft`), so where the model must guess it errs high (the film
@@ -98,10 +101,14 @@ class CoolingProgress:
     solver steps only over the ``time.mechanics_*`` limits (multirate), those steps cost about half as much, and
     :meth:`stress_steps_left` with :class:`TimeLeft`'s split of the time per thermal and per stress step counts
     that: ring A 92-95 % (0.56..2.37), with ``time.max_dX = 0.01`` 84-90 % (0.65..2.65); the ratio passes 2 only in
-    the last ~10 % of the run (the air stage's Newton time from the hot mean). The peer race at the default is still
-    29-39 % (1.14..3.03, high and never low: the count of the austenite left over 0.9 max_dX is what ring A needs and
-    what this martensitic race never takes); a forecast from the steel's CCT at a Newton-cooled core rate was tried
-    and gives ring A's core 0.1-0.35 diffusional instead of 0.67 (the latent-heat plateau slows it further)."""
+    the last ~10 % of the run (the air stage's Newton time from the hot mean). Counted at full weight, the austenite
+    left over 0.9 max_dX is what ring A needs and what the martensitic peer race never takes (29-39 %, 1.14..3.03);
+    weighted by the share of the pearlite/bainite incubation run so far (1 in ring A from step ~226 of 1127, long
+    before its ~600 steps of the diffusional limit; below 0.2 in the peer race until its film has collapsed), the
+    peer race is 76-100 % (1.05..2.24), ring A 93 % (0.80..2.32), with ``time.max_dX = 0.01`` 89 % (0.68..2.59)
+    (session 10, three peer-race runs, on a machine loaded by other work). Still high, never low: the film's end is
+    estimated late. (A forecast from the steel's CCT at a Newton-cooled core rate, tried before, gave ring A's core
+    0.1-0.35 diffusional instead of 0.67; docs/experiments/time_left_diffusional_forecast.md.)"""
 
     def __init__(self, T_start_C: float, T_end_C: float, T_sink_C: float, dt_max_s: float, max_dT_K: float,
                  max_dX: float, growth: float, mechanics_max_dT_K: float = 0.0, mechanics_max_dX: float = 0.0) -> None:
@@ -138,7 +145,8 @@ class CoolingProgress:
         scaled = now.steps_done * (1.0 - fraction) / max(fraction, 1e-9)
         if self._phase_change_limited:
             return max(scaled, at_dt_max)
-        return max(min(scaled, self._film_steps(now) + self._limit_steps(now, self.max_dT_K, self.max_dX)), at_dt_max)
+        return max(min(scaled, self._film_steps(now) + self._limit_steps(now, self.max_dT_K, self.max_dX, now.incubation_share)),
+                   at_dt_max)
 
     def stress_steps_left(self, now: StepState, steps_left: float) -> float:
         """The stress steps among the ``steps_left`` thermal steps (:meth:`steps_left` of the same ``now``): the
@@ -148,7 +156,7 @@ class CoolingProgress:
         phase-fraction limit and the growth steps -- never more than the thermal steps (limits of 0: all of them)."""
         if self.mechanics_max_dT_K <= 0.0 or self.mechanics_max_dX <= 0.0:
             return steps_left
-        count = self._film_steps(now) + self._limit_steps(now, self.mechanics_max_dT_K, self.mechanics_max_dX)
+        count = self._film_steps(now) + self._limit_steps(now, self.mechanics_max_dT_K, self.mechanics_max_dX, 1.0)
         return min(steps_left, count)
 
     def _film_steps(self, now: StepState) -> float:
@@ -167,13 +175,15 @@ class CoolingProgress:
         film_left_s = now.film_excess_K * (now.time_s - t1) / (excess1 - now.film_excess_K)
         return film_left_s * (now.steps_done - steps0) / since
 
-    def _limit_steps(self, now: StepState, max_dT_K: float, max_dX: float) -> float:
-        """The steps a temperature limit ``max_dT_K``, a phase-fraction limit ``max_dX`` and the growth to
-        ``time.dt_max_s`` need, one after another (the thermal step's limits or the stress solver's)."""
+    def _limit_steps(self, now: StepState, max_dT_K: float, max_dX: float, transforming_share: float) -> float:
+        """The steps a temperature limit ``max_dT_K``, a phase-fraction limit ``max_dX`` on ``transforming_share``
+        of the austenite left and the growth to ``time.dt_max_s`` need, one after another (the thermal step's
+        limits, whose phase-fraction limit holds the diffusional products only, or the stress solver's, whose
+        limit holds every phase)."""
         # the temperature limit holds at the surface first, then inside: the two drops one after the other
         drop_K = max(now.surface_mean_C - self.T_end_C, 0.0) + max(float(np.max(now.T_nodes_C)) - self.T_end_C, 0.0)
         growth = max(math.log(self.dt_max_s / now.dt_next_s) / math.log(self.growth), 0.0)
-        return drop_K / (0.9 * max_dT_K) + now.austenite_fraction / (0.9 * max_dX) + growth
+        return drop_K / (0.9 * max_dT_K) + transforming_share * now.austenite_fraction / (0.9 * max_dX) + growth
 
     def _newton_time_s(self, excess_K: float, rate_per_s: float) -> float:
         """When the mean's excess over the ambient, decaying at ``rate_per_s``, reaches the end's excess."""

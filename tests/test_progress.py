@@ -109,6 +109,24 @@ def test_the_stress_steps_left_count_the_mechanics_limits_and_never_exceed_the_t
     assert every_step.stress_steps_left(now, 1234.0) == 1234.0
 
 
+def test_the_pearlite_bainite_limit_counts_the_austenite_as_far_as_its_incubation_has_run():
+    """Closed form, no film: (surface drop + hottest drop) / (0.9 max_dT_K) + incubation share x austenite left /
+    (0.9 max_dX) + the growth steps; the stress solver's count keeps all the austenite (its phase-fraction limit
+    holds martensite too)."""
+    progress = CoolingProgress(850.0, 40.0, 20.0, dt_max_s=8.0, max_dT_K=20.0, max_dX=0.002, growth=2.0,
+                               mechanics_max_dT_K=20.0, mechanics_max_dX=0.02)
+    counts = {}
+    for share in (0.0, 0.5, 1.0):
+        now = StepState(steps_done=10000, time_s=20.0, T_nodes_C=np.array([300.0, 500.0]), dt_next_s=1.0,
+                        stage_clock_left_s=100.0, ends_on_temperature=False, surface_mean_C=300.0,
+                        austenite_fraction=0.5, incubation_share=share)
+        counts[share] = progress.steps_left(now)
+        assert progress.stress_steps_left(now, 1e4) == pytest.approx((260.0 + 460.0) / 18.0 + 0.5 / 0.018 + 3.0)
+    assert counts[0.0] == pytest.approx((260.0 + 460.0) / 18.0 + 3.0)
+    assert counts[0.5] == pytest.approx(counts[0.0] + 0.5 * 0.5 / 0.0018)
+    assert counts[1.0] == pytest.approx(counts[0.0] + 0.5 / 0.0018)
+
+
 def test_the_stress_steps_left_while_a_film_holds_after_the_phase_change_limit_took_over():
     """Regression: once the phase-fraction limit has held, :meth:`CoolingProgress.steps_left` no longer looks at the
     film, so the film's history lacked the latest steps and the stress count raised StopIteration (ring A condition 3
@@ -145,8 +163,9 @@ def test_a_boiling_curve_has_a_film_collapse_temperature_and_convection_has_none
 
 @pytest.mark.slow
 @pytest.mark.parametrize("overrides, measured, required",
-                         [({}, "0.92-0.95 (0.56..2.37); every step at one cost before: 0.71-0.76 (0.39..3.1)", 0.85),
-                          ({"time.max_dX": 0.01}, "0.84-0.90 (0.65..2.65)", 0.8)],
+                         [({}, "0.93 (0.80..2.32); 0.92-0.95 (0.56..2.37) before the incubation weight; every step at one cost "
+                               "before: 0.71-0.76 (0.39..3.1)", 0.85),
+                          ({"time.max_dX": 0.01}, "0.89 (0.68..2.59); 0.84-0.90 (0.65..2.65) before", 0.8)],
                          ids=["default", "max_dX_0.01"])
 def test_the_time_left_on_ring_A_is_within_a_factor_2_for_most_of_the_run(tmp_path, overrides, measured, required):
     """Ring A condition 1 (~440 steps of vapour film in oil, then, at the default ``time.max_dX = 0.002``, ~600
@@ -168,12 +187,13 @@ def test_the_time_left_on_the_peer_race_is_within_a_factor_2_for_most_of_the_run
     """The peer race in water (a vapour film that holds ~190 of its ~310 steps while the mean hardly moves, then
     collapses within 0.3 s over most of the surface). Measured with ``time.max_dX = 0.1`` (limiting every phase,
     the former default) 1.00 (0.63..1.30), the model before 0.35; at today's default, with thermal and stress steps
-    priced apart (multirate), 0.29-0.39 (1.14..3.03; every step at one cost before: 0.16-0.27, up to 4-6x high): a
-    KNOWN SHORTFALL (issue 20 item 6 open). The count of the steps the pearlite/bainite limit may still need (the
-    austenite left over 0.9 max_dX) is what ring A needs and what this martensitic race never takes: the estimate
-    errs high (up to 3x until the film has collapsed), never low -- which is what is asserted."""
+    priced apart (multirate), 0.29-0.39 (1.14..3.03; every step at one cost before: 0.16-0.27, up to 4-6x high) while
+    the steps the pearlite/bainite limit may still need (the austenite left over 0.9 max_dX) were counted at full
+    weight: ring A needs them, this martensitic race never takes them. Weighted by the share of the incubation run
+    (below 0.2 here until the film has collapsed): 0.76-1.00 (1.05..2.24) in three runs on a loaded machine. The
+    estimate errs high (the film's end is estimated late), never low."""
     elapsed, estimate, end = recorded_run(load_case(ROOT / "cases" / "peer_race_100Cr6.toml"), tmp_path)
     assert np.all(np.diff(estimate) <= 0.0)
     share, low, high = within_factor_2(elapsed, estimate, end)
     print(f"peer race: share {share:.2f} ({low:.2f}..{high:.2f})")
-    assert low >= 0.5 and high < 4.0, (share, low, high)
+    assert share >= 0.65 and low >= 0.5 and high < 3.0, (share, low, high)
