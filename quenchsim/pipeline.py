@@ -482,11 +482,7 @@ class QuenchRun:
         if self.mech is not None:
             self.mech.restore_state(state["mechanics"])
             ref = state["mechanics_ref"]
-            T_ref, X_ref = np.array(ref["T_qp"]), {p: np.array(v) for p, v in ref["fractions"].items()}
-            X_now = self.thermal.fractions()
-            in_step = np.array_equal(T_ref, self.thermal.T_qp) and X_ref.keys() == X_now.keys() and all(
-                np.array_equal(v, X_now[p]) for p, v in X_ref.items())
-            self.mech_ref = (self.thermal.T_qp, X_now) if in_step else (T_ref, X_ref)
+            self.mech_ref = (np.array(ref["T_qp"]), {p: np.array(v) for p, v in ref["fractions"].items()})
         self.times = [float(t) for t in state["run"]["times"]]
         self.probe_rows = list(np.asarray(state["run"]["probe_rows"]).reshape(len(self.times), -1))
         self._last_frame_T = np.array(state["run"]["last_frame_T"])
@@ -571,8 +567,8 @@ class QuenchRun:
         """Stress steps from the last one's state to (T_end, X_end): one step, or, when it does not converge,
         sub-steps along the straight path between the two states (halving down to 1/64 of the change)."""
         T_ref, X_ref = self.mech_ref
-        if T_end is T_ref and X_end is X_ref:
-            return
+        if np.array_equal(T_end, T_ref) and all(np.all(X == X_ref.get(p, 0.0)) for p, X in X_end.items()):
+            return      # already there (no change since the last stress step)
         with self.timer("mechanics_s"):
             done, share = 0.0, 1.0
             while done < 1.0:

@@ -80,8 +80,8 @@ class CoolingProgress:
       the surface first, inside later) over the temperature limit (steps at 90 % of the limit, as the
       controller aims), the austenite left over the phase-fraction limit -- counted as far as the incubation of
       pearlite or bainite has run at some point (``incubation_share``: the limit holds only those, which form once
-      incubated) -- and the steps the growth factor needs to reach ``time.dt_max_s``. The scaling alone counts the film's slow
-      steps for all the cooling after it, which goes far faster once the film collapses.
+      incubated) -- and the steps the growth factor needs to reach ``time.dt_max_s``. The scaling alone counts
+      the film's slow steps for all the cooling after it, which goes far faster once the film collapses.
 
     The estimate shown never rises (:class:`TimeLeft`), so where the model must guess it errs high (the film
     ends when its farthest point has cooled through its collapse temperature at its own pace, which a wetting
@@ -145,8 +145,8 @@ class CoolingProgress:
         scaled = now.steps_done * (1.0 - fraction) / max(fraction, 1e-9)
         if self._phase_change_limited:
             return max(scaled, at_dt_max)
-        return max(min(scaled, self._film_steps(now) + self._limit_steps(now, self.max_dT_K, self.max_dX, now.incubation_share)),
-                   at_dt_max)
+        counted = self._film_steps(now) + self._limit_steps(now, self.max_dT_K, self.max_dX, now.incubation_share)
+        return max(min(scaled, counted), at_dt_max)
 
     def stress_steps_left(self, now: StepState, steps_left: float) -> float:
         """The stress steps among the ``steps_left`` thermal steps (:meth:`steps_left` of the same ``now``): the
