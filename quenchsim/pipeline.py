@@ -20,7 +20,7 @@ import signal
 import threading
 import time
 import zipfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -399,6 +399,7 @@ class QuenchRun:
                                 dt, self.thermal.time_s)
                     position["dt_s"], counts["rejected"] = dt / 2, counts["rejected"] + 1
                     continue
+                T_qp_before = self.thermal.T_qp
                 self.thermal.commit(step)
                 counts["steps"] += 1
                 counts["heat_out_J"] += step.heat_out_J
@@ -416,14 +417,17 @@ class QuenchRun:
                 grow = ctl.growth if limit < 1e-12 else min(ctl.growth, 0.9 / limit)
                 position["dt_s"] = float(np.clip(dt * grow, ctl.dt_min_s, ctl.dt_max_s))
                 T_surface_C = self.fe.at_facet_qp(self.thermal.T).reshape(-1)
-                austenite = self.thermal.fractions().get("austenite") if self.kin is not None else None
+                fractions = self.thermal.fractions() if self.kin is not None else {}
                 now = StepState(counts["steps"], self.thermal.time_s, self.thermal.T, position["dt_s"],
                                 t_end - self.thermal.time_s, math.isfinite(stage.until_max_C), later,
                                 float(np.mean(T_surface_C)), float(np.max(T_surface_C - collapse_C)),
-                                0.0 if austenite is None else float(np.mean(austenite)),
+                                float(np.mean(fractions.get("austenite", 0.0))),
                                 dX / ctl.max_dX > step.max_dT_K / ctl.max_dT_K,
                                 0.0 if self.kin is None else metallurgy.incubation_share(
-                                    self.thermal.phase_state, self.kin, self.thermal.T_qp))
+                                    self.thermal.phase_state, self.kin, self.thermal.T_qp),
+                                float(np.mean(sum(fractions.get(r, 0.0) for r in self.kin.reactions)))
+                                if self.kin is not None else 0.0,
+                                None if self.kin is None else self._diffusional_to_come(T_qp_before, dt))
                 steps_left = estimate.steps_left(now)
                 stress_s, solve_s = self.timings.get("mechanics_s", 0.0), self.timings.get("thermal_metallurgy_s", 0.0)
                 self.bar.update(self.thermal.time_s, estimate.fraction(self.thermal.T), counts["steps"], steps_left,
@@ -434,6 +438,13 @@ class QuenchRun:
             self._checkpoint(vtk)
             last_checkpoint = time.perf_counter()
         self.bar.finish(self.thermal.time_s)
+
+    def _diffusional_to_come(self, T_qp_before: np.ndarray, dt_s: float) -> Callable[[], float]:
+        """The forecast of the pearlite + bainite still to form for the progress estimate, from each point's
+        cooling rate over the step just taken (asked only when the estimate needs it)."""
+        state, T_qp = self.thermal.phase_state, self.thermal.T_qp
+        return lambda: metallurgy.diffusional_fraction_to_come(state, self.kin, T_qp, (T_qp_before - T_qp) / dt_s,
+                                                               self.case.air.temperature_C)
 
     def _newton_rate_per_s(self, stage: Stage) -> float:
         """The rate ``h A / C`` at which the part would cool in ``stage`` as one lump (Newton's law: the

@@ -25,6 +25,10 @@ BAR_FORMAT = "{desc}: {percentage:3.0f}%|{bar}| [{elapsed}{postfix}]"
 """The postfix carries the simulated seconds (one decimal) and the time left."""
 STEPS = 1000
 """The bar counts thousandths of the run's work."""
+FORECAST_EVERY_STEPS = 16
+"""Steps between two forecasts of the pearlite + bainite still to form (each costs about a step's metallurgy)."""
+PACE_MIN_STEPS = 8
+"""Steps of the phase-fraction limit before their pace (pearlite + bainite formed per step) is taken as known."""
 
 
 @dataclass(frozen=True)
@@ -40,7 +44,10 @@ class StepState:
     ``austenite_fraction``: the mean fraction still to transform (0 for a steel that does not);
     ``limited_by_phase_change``: the phase-fraction limit ``time.max_dX`` held the last step rather than the
     temperature limit ``time.max_dT_K``; ``incubation_share``: the largest share of its incubation any point has
-    run for a diffusional reaction (:func:`quenchsim.metallurgy.incubation_share`; 1 once one has started)."""
+    run for a diffusional reaction (:func:`quenchsim.metallurgy.incubation_share`; 1 once one has started);
+    ``diffusional_fraction``: the mean fraction of pearlite + bainite formed so far; ``diffusional_to_come``: asked
+    only when the estimate needs it, the mean fraction of pearlite + bainite still to form
+    (:func:`quenchsim.metallurgy.diffusional_fraction_to_come` at each point's cooling rate now; None: not known)."""
 
     steps_done: int
     time_s: float
@@ -54,6 +61,8 @@ class StepState:
     austenite_fraction: float = 0.0
     limited_by_phase_change: bool = False
     incubation_share: float = 0.0
+    diffusional_fraction: float = 0.0
+    diffusional_to_come: Callable[[], float] | None = None
 
 
 class CoolingProgress:
@@ -71,8 +80,13 @@ class CoolingProgress:
       reaches the end temperature (Newton's cooling: its rate over the last step in that stage, before it the
       stage's ``h A / C``). Since no step is longer, this is also a floor on every other estimate, so a long air
       stage of capped steps is counted while the quench still runs.
-    * the phase-fraction limit ``time.max_dX`` (once it has held): a transformation front runs through the part
-      at the pace seen, so the steps so far scaled by the cooling still to do (the fraction above).
+    * the phase-fraction limit ``time.max_dX`` (once it has held): the least of the steps so far scaled by the
+      cooling still to do (the fraction above) and a count: the pearlite + bainite still to form, forecast with the
+      run's kinetics as each point goes on cooling at its own rate (:func:`quenchsim.metallurgy.diffusional_fraction_to_come`,
+      every :data:`FORECAST_EVERY_STEPS` steps), over the fraction formed per step since the limit first held,
+      plus the drops and growth steps below. The scaling alone counts a pace that holds while the front runs
+      through the part; near the end of the transformation most of the austenite left turns to martensite
+      instead, and the scaling was up to 2.3-2.6x high there on ring A.
     * the temperature limit ``time.max_dT_K``: the least of that scaling and a count of what each limit still
       needs -- while a vapour film holds somewhere, the steps at the film's mean step until the surface point
       farthest above its film-collapse temperature reaches it at the pace it cools (over the last fifth of the
@@ -106,9 +120,18 @@ class CoolingProgress:
     weighted by the share of the pearlite/bainite incubation run so far (1 in ring A from step ~226 of 1127, long
     before its ~600 steps of the diffusional limit; below 0.2 in the peer race until its film has collapsed), the
     peer race is 76-100 % (1.05..2.24), ring A 93 % (0.80..2.32), with ``time.max_dX = 0.01`` 89 % (0.68..2.59)
-    (session 10, three peer-race runs, on a machine loaded by other work). Still high, never low: the film's end is
-    estimated late. (A forecast from the steel's CCT at a Newton-cooled core rate, tried before, gave ring A's core
-    0.1-0.35 diffusional instead of 0.67; docs/experiments/time_left_diffusional_forecast.md.)"""
+    (session 10, three peer-race runs, on a machine loaded by other work). With the forecast count once the
+    phase-fraction limit holds, and a stress count that takes the larger of its temperature and transformation
+    steps (before: their sum), all within a factor 2 over the window (session 11, idle machine): ring A 100 %
+    (0.54..1.49), with ``time.max_dX = 0.01`` 100 % (0.65..1.91), the peer race 100 % (0.95..1.61), with
+    ``time.max_dX = 0.01`` 100 % (0.75..1.52), the small ring 100 % (0.65..0.92); the small ring with
+    ``time.dt_max_s = 0.05`` 96 % on the CPU clock (0.95..2.67; 97 %, 0.90..2.62 before: its first steps cost twice
+    the later ones in a 2.5 s run). Low only early on ring A (nothing during the quench foretells the ~600 steps of
+    the diffusional limit), high while a film holds (its end is estimated late). A forecast from the start -- the
+    steel's CCT at a Newton-cooled core rate -- gave ring A's core 0.1-0.35 diffusional instead of 0.67
+    (docs/experiments/time_left_diffusional_forecast.md); the forecast kept is made only once the limit holds, from
+    each point's own state and rate, and on ring A it is within 0.03 of the pearlite + bainite still to form from
+    ~200 steps into the limit's ~600 (0.15 against 0.33 at its first step, when the scaling is the lesser)."""
 
     def __init__(self, T_start_C: float, T_end_C: float, T_sink_C: float, dt_max_s: float, max_dT_K: float,
                  max_dX: float, growth: float, mechanics_max_dT_K: float = 0.0, mechanics_max_dX: float = 0.0) -> None:
@@ -122,6 +145,8 @@ class CoolingProgress:
         self._last: tuple[float, float] | None = None      # (time_s, mean nodal temperature) of the last call
         self._film: list[tuple[float, int, float]] = []     # (time_s, steps, film excess) while a film holds
         self._phase_change_limited = False
+        self._phase_change_start: tuple[int, float] | None = None   # (steps, diffusional fraction) when it first held
+        self._forecast: tuple[int, float, float] | None = None      # (steps, diffusional fraction, to come) when asked
 
     def fraction(self, T_nodes_C: np.ndarray) -> float:
         return float(min(max((self.T_start_C - float(np.mean(T_nodes_C))) / self.span_K, 0.0), 1.0))
@@ -144,20 +169,24 @@ class CoolingProgress:
         self._phase_change_limited |= now.limited_by_phase_change
         scaled = now.steps_done * (1.0 - fraction) / max(fraction, 1e-9)
         if self._phase_change_limited:
-            return max(scaled, at_dt_max)
-        counted = self._film_steps(now) + self._limit_steps(now, self.max_dT_K, self.max_dX, now.incubation_share)
+            counted = self._diffusional_steps(now)
+        else:
+            counted = self._film_steps(now) + now.incubation_share * now.austenite_fraction / (0.9 * self.max_dX)
+        counted += self._drop_steps(now, self.max_dT_K) + self._growth_steps(now)
         return max(min(scaled, counted), at_dt_max)
 
     def stress_steps_left(self, now: StepState, steps_left: float) -> float:
         """The stress steps among the ``steps_left`` thermal steps (:meth:`steps_left` of the same ``now``): the
         stress solver steps when the change since its last step exceeds ``mechanics_max_dT_K`` or
-        ``mechanics_max_dX`` (the pipeline's multirate stepping), so it takes the film's steps and the temperature
-        drops still to come over 90 % of its temperature limit, the transformation left over 90 % of its
-        phase-fraction limit and the growth steps -- never more than the thermal steps (limits of 0: all of them)."""
+        ``mechanics_max_dX`` (the pipeline's multirate stepping), so it takes the film's steps, then the larger of
+        the temperature drops still to come over 90 % of its temperature limit and the austenite left over 90 % of
+        its phase-fraction limit (martensite forms as the part cools, so one stress step serves both limits), then
+        the growth steps -- never more than the thermal steps (limits of 0: all of them)."""
         if self.mechanics_max_dT_K <= 0.0 or self.mechanics_max_dX <= 0.0:
             return steps_left
-        count = self._film_steps(now) + self._limit_steps(now, self.mechanics_max_dT_K, self.mechanics_max_dX, 1.0)
-        return min(steps_left, count)
+        cooling = max(self._drop_steps(now, self.mechanics_max_dT_K),
+                      now.austenite_fraction / (0.9 * self.mechanics_max_dX))
+        return min(steps_left, self._film_steps(now) + cooling + self._growth_steps(now))
 
     def _film_steps(self, now: StepState) -> float:
         """The steps until the vapour film collapses everywhere (0 with no film); records ``now`` in the film's
@@ -175,15 +204,32 @@ class CoolingProgress:
         film_left_s = now.film_excess_K * (now.time_s - t1) / (excess1 - now.film_excess_K)
         return film_left_s * (now.steps_done - steps0) / since
 
-    def _limit_steps(self, now: StepState, max_dT_K: float, max_dX: float, transforming_share: float) -> float:
-        """The steps a temperature limit ``max_dT_K``, a phase-fraction limit ``max_dX`` on ``transforming_share``
-        of the austenite left and the growth to ``time.dt_max_s`` need, one after another (the thermal step's
-        limits, whose phase-fraction limit holds the diffusional products only, or the stress solver's, whose
-        limit holds every phase)."""
-        # the temperature limit holds at the surface first, then inside: the two drops one after the other
+    def _drop_steps(self, now: StepState, max_dT_K: float) -> float:
+        """The steps a temperature limit ``max_dT_K`` needs: it holds at the surface first, then inside, so the
+        surface's and the hottest node's drops to the end temperature one after the other, at 90 % of the limit."""
         drop_K = max(now.surface_mean_C - self.T_end_C, 0.0) + max(float(np.max(now.T_nodes_C)) - self.T_end_C, 0.0)
-        growth = max(math.log(self.dt_max_s / now.dt_next_s) / math.log(self.growth), 0.0)
-        return drop_K / (0.9 * max_dT_K) + transforming_share * now.austenite_fraction / (0.9 * max_dX) + growth
+        return drop_K / (0.9 * max_dT_K)
+
+    def _growth_steps(self, now: StepState) -> float:
+        """The steps the growth factor needs from the next step to ``time.dt_max_s``."""
+        return max(math.log(self.dt_max_s / now.dt_next_s) / math.log(self.growth), 0.0)
+
+    def _diffusional_steps(self, now: StepState) -> float:
+        """The steps the pearlite/bainite limit still holds, once it has held: the fraction still to form
+        (``now.diffusional_to_come``, asked every :data:`FORECAST_EVERY_STEPS` steps and less what has formed since)
+        over the fraction formed per step since the limit first held (inf until :data:`PACE_MIN_STEPS` such steps)."""
+        if self._phase_change_start is None:
+            self._phase_change_start = (now.steps_done, now.diffusional_fraction)
+        steps0, formed0 = self._phase_change_start
+        if now.diffusional_to_come is None or now.steps_done - steps0 < PACE_MIN_STEPS:
+            return math.inf
+        pace = (now.diffusional_fraction - formed0) / (now.steps_done - steps0)
+        if not pace > 0.0:
+            return math.inf
+        if self._forecast is None or now.steps_done - self._forecast[0] >= FORECAST_EVERY_STEPS:
+            self._forecast = (now.steps_done, now.diffusional_fraction, now.diffusional_to_come())
+        _, formed_then, to_come = self._forecast
+        return max(to_come - (now.diffusional_fraction - formed_then), 0.0) / pace
 
     def _newton_time_s(self, excess_K: float, rate_per_s: float) -> float:
         """When the mean's excess over the ambient, decaying at ``rate_per_s``, reaches the end's excess."""
