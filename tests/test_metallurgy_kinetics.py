@@ -87,7 +87,8 @@ def test_the_diffusional_forecast_of_a_held_point_is_the_isothermal_jmak_fractio
     kin = load_kinetics(load_material("SUJ2"), 850.0)
     pearlite, T = kin.reactions["pearlite"], np.array([700.0])
     assert T[0] > kin.reactions["bainite"].T_upper_C
-    expected = 1.0 - np.exp(-((1023.0 * float(np.ravel(pearlite.inverse_tau(T))[0])) ** float(np.ravel(pearlite.exponent(T))[0])))
+    rate_per_s, n = float(np.ravel(pearlite.inverse_tau(T))[0]), float(np.ravel(pearlite.exponent(T))[0])
+    expected = 1.0 - np.exp(-((1023.0 * rate_per_s) ** n))
     assert 0.05 < expected < 0.95          # a hold that does not saturate
     forecast = diffusional_fraction_to_come(initial_state((1,), kin), kin, T, np.zeros(1), 25.0, every=1)
     assert forecast == pytest.approx(expected, rel=1e-6)

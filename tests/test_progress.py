@@ -195,8 +195,8 @@ def test_a_boiling_curve_has_a_film_collapse_temperature_and_convection_has_none
 
 @pytest.mark.slow
 @pytest.mark.parametrize("overrides, measured, required",
-                         [({}, "1.00 (0.54..1.49); 0.93 (0.80..2.32) before the forecast of the pearlite/bainite steps, "
-                               "0.92-0.95 (0.56..2.37) before the incubation weight", 0.95),
+                         [({}, "1.00 (0.54..1.49); 0.93 (0.80..2.32) before the forecast of the pearlite/bainite "
+                               "steps, 0.92-0.95 (0.56..2.37) before the incubation weight", 0.95),
                           ({"time.max_dX": 0.01}, "1.00 (0.65..1.91); 0.89 (0.68..2.59) before the forecast", 0.9)],
                          ids=["default", "max_dX_0.01"])
 def test_the_time_left_on_ring_A_is_within_a_factor_2_for_most_of_the_run(tmp_path, overrides, measured, required):
