@@ -82,8 +82,9 @@ class CoolingProgress:
       stage of capped steps is counted while the quench still runs.
     * the phase-fraction limit ``time.max_dX`` (once it has held): the least of the steps so far scaled by the
       cooling still to do (the fraction above) and a count: the pearlite + bainite still to form, forecast with the
-      run's kinetics as each point goes on cooling at its own rate (:func:`quenchsim.metallurgy.diffusional_fraction_to_come`,
-      every :data:`FORECAST_EVERY_STEPS` steps), over the fraction formed per step since the limit first held,
+      run's kinetics as each point goes on cooling at its own rate
+      (:func:`quenchsim.metallurgy.diffusional_fraction_to_come`, every :data:`FORECAST_EVERY_STEPS` steps), over
+      the fraction formed per step since the limit first held,
       plus the drops and growth steps below. The scaling alone counts a pace that holds while the front runs
       through the part; near the end of the transformation most of the austenite left turns to martensite
       instead, and the scaling was up to 2.3-2.6x high there on ring A.

@@ -112,21 +112,22 @@ def diffusional_fraction_to_come(state: PhaseState, kin: Kinetics, T_C: np.ndarr
     0.0
     """
     kin = replace(kin, substep_K=max(kin.substep_K, FORECAST_SUBSTEP_K))
-    def sample(a: np.ndarray) -> np.ndarray:
-        return np.asarray(a).reshape(-1)[::every].copy()
+    shape = state.T_min_C.shape
+
+    def sample(a: np.ndarray | float) -> np.ndarray:
+        return np.broadcast_to(np.asarray(a, dtype=float), shape).reshape(-1)[::every].copy()
 
     point = PhaseState(fractions={p: sample(v) for p, v in state.fractions.items()},
                        additivity={r: sample(v) for r, v in state.additivity.items()},
                        T_min_C=sample(state.T_min_C), cooling_rate_700_C_s=sample(state.cooling_rate_700_C_s))
-    T = np.broadcast_to(np.asarray(T_C, dtype=float), state.T_min_C.shape).reshape(-1)[::every]
-    rate = np.maximum(np.broadcast_to(np.asarray(cooling_rate_C_s, dtype=float), state.T_min_C.shape).reshape(-1)[::every], 0.0)
-    k_per_s = rate / np.maximum(T - ambient_C, 1.0)
+    T = sample(T_C)
+    k_per_s = np.maximum(sample(cooling_rate_C_s), 0.0) / np.maximum(T - ambient_C, 1.0)
     before = sum(point.fractions[r] for r in kin.reactions)
     for chunk_s in FORECAST_CHUNKS_S:
         T_next = ambient_C + (T - ambient_C) * np.exp(-k_per_s * chunk_s)
         point = advance(point, kin, T, T_next, chunk_s)
         T = T_next
-    return float(np.mean(sum(point.fractions[r] for r in kin.reactions) - before)) if kin.reactions else 0.0
+    return float(np.mean(sum(point.fractions[r] for r in kin.reactions) - before))
 
 
 def initial_state(shape: tuple[int, ...], kin: Kinetics) -> PhaseState:
