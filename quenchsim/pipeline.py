@@ -368,6 +368,7 @@ class QuenchRun:
             later = [(st.duration_s, self._newton_rate_per_s(st) if math.isfinite(st.until_max_C) else None)
                      for st in plan[index + 1:]]
             collapse_C = self._film_collapse_C(htc, t_end)
+            filmed = np.isfinite(collapse_C)
             self.bar.phase(stage.name)
             while self.thermal.time_s < t_end - 1e-9 and float(np.max(self.thermal.T)) > stage.until_max_C:
                 if self.stop.requested or time.perf_counter() - last_checkpoint >= every_s:
@@ -421,6 +422,7 @@ class QuenchRun:
                 now = StepState(counts["steps"], self.thermal.time_s, self.thermal.T, position["dt_s"],
                                 t_end - self.thermal.time_s, math.isfinite(stage.until_max_C), later,
                                 float(np.mean(T_surface_C)), float(np.max(T_surface_C - collapse_C)),
+                                float(np.mean(T_surface_C[filmed] < collapse_C[filmed])) if filmed.any() else 0.0,
                                 float(np.mean(fractions.get("austenite", 0.0))),
                                 dX / ctl.max_dX > step.max_dT_K / ctl.max_dT_K,
                                 0.0 if self.kin is None else metallurgy.incubation_share(
@@ -432,7 +434,7 @@ class QuenchRun:
                 stress_s, solve_s = self.timings.get("mechanics_s", 0.0), self.timings.get("thermal_metallurgy_s", 0.0)
                 self.bar.update(self.thermal.time_s, estimate.fraction(self.thermal.T), counts["steps"], steps_left,
                                 counts.get("stress_steps", 0), estimate.stress_steps_left(now, steps_left),
-                                stress_s / max(stress_s + solve_s, 1e-300))
+                                stress_s, solve_s)
             self._mechanics_catch_up()
             position["stage"], position["stage_end_s"] = index + 1, None
             self._checkpoint(vtk)

@@ -9,6 +9,7 @@ left from what limits the step (:meth:`CoolingProgress.steps_left`) and never ri
 
 from __future__ import annotations
 
+import bisect
 import logging
 import math
 import sys
@@ -29,6 +30,25 @@ FORECAST_EVERY_STEPS = 16
 """Steps between two forecasts of the pearlite + bainite still to form (each costs about a step's metallurgy)."""
 PACE_MIN_STEPS = 8
 """Steps of the phase-fraction limit before their pace (pearlite + bainite formed per step) is taken as known."""
+FILM_PACE_SHARE = 0.1
+"""The film's end is extrapolated from how fast its farthest point cooled over the last tenth of the film's time: its
+cooling speeds up as the wetting front nears (over the last fifth, ring B condition 6's film was 2-3x late)."""
+STEPS_PER_LIMIT_OF_MEAN = 3.5
+"""Steps the pearlite/bainite limit holds per ``time.max_dX`` (at 90 %) of the mean pearlite + bainite still to form,
+before the limit has held and its own pace is known: the limit holds at the fastest-transforming point, while the
+mean forms at the rate of the front, a fraction of the section. Measured on ring A condition 1 (session 11, code of
+6199ce5): 3.3-3.7 throughout its ~600 steps of the limit (docs/experiments/time_left_diffusional_forecast.md)."""
+PRICE_WINDOW_SHARE = 0.3
+"""The time per step is taken over the last 30 % of the steps so far (at least :data:`PRICE_WINDOW_MIN_STEPS`)."""
+PRICE_WINDOW_MIN_STEPS = 10
+PRICE_MEDIAN_MIN_STEPS = 50
+"""The median step (:data:`PRICE_OUTLIER_FACTOR`) is taken over at least this many of the last steps, so that a short
+window where most steps are one-offs (the film's first collapse) does not take them for the norm."""
+PRICE_OUTLIER_FACTOR = 3.0
+"""A step dearer than this many times the median step is a one-off, not priced (:meth:`TimeLeft._price`): where the
+vapour film first collapses, tries are thrown away (the thermal iteration at its limit) and the steps cost 3-14x the
+median on ring B condition 6, 7-25x on the solid cylinder. A step that refactorises the stress tangent stays in
+(41 ms on ring A's default mesh, reports/bench.md, about 2x a stress step's 20-27 ms)."""
 
 
 @dataclass(frozen=True)
@@ -40,7 +60,9 @@ class StepState:
     clock and, for the stage that ends on the end temperature, its Newton cooling rate ``h A / C`` (1/s; None
     for a stage that runs its clock); ``surface_mean_C``: the mean temperature of the cooled surface;
     ``film_excess_K``: how far the surface point farthest above its film-collapse temperature
-    (:func:`film_collapse_temperatures`) still is above it (<= 0: no vapour film anywhere);
+    (:func:`film_collapse_temperatures`) still is above it (<= 0: no vapour film anywhere); ``film_wetted_share``:
+    the share of the surface points with a film-collapse temperature that have cooled below it (their film has
+    collapsed; 0 while the film holds everywhere);
     ``austenite_fraction``: the mean fraction still to transform (0 for a steel that does not);
     ``limited_by_phase_change``: the phase-fraction limit ``time.max_dX`` held the last step rather than the
     temperature limit ``time.max_dT_K``; ``incubation_share``: the largest share of its incubation any point has
@@ -58,6 +80,7 @@ class StepState:
     later_stages: Sequence[tuple[float, float | None]] = ()
     surface_mean_C: float = -math.inf
     film_excess_K: float = -math.inf
+    film_wetted_share: float = 0.0
     austenite_fraction: float = 0.0
     limited_by_phase_change: bool = False
     incubation_share: float = 0.0
@@ -80,59 +103,36 @@ class CoolingProgress:
       reaches the end temperature (Newton's cooling: its rate over the last step in that stage, before it the
       stage's ``h A / C``). Since no step is longer, this is also a floor on every other estimate, so a long air
       stage of capped steps is counted while the quench still runs.
-    * the phase-fraction limit ``time.max_dX`` (once it has held): the least of the steps so far scaled by the
-      cooling still to do (the fraction above) and a count: the pearlite + bainite still to form, forecast with the
-      run's kinetics as each point goes on cooling at its own rate
-      (:func:`quenchsim.metallurgy.diffusional_fraction_to_come`, every :data:`FORECAST_EVERY_STEPS` steps), over
-      the fraction formed per step since the limit first held,
-      plus the drops and growth steps below. The scaling alone counts a pace that holds while the front runs
-      through the part; near the end of the transformation most of the austenite left turns to martensite
-      instead, and the scaling was up to 2.3-2.6x high there on ring A.
-    * the temperature limit ``time.max_dT_K``: the least of that scaling and a count of what each limit still
-      needs -- while a vapour film holds somewhere, the steps at the film's mean step until the surface point
-      farthest above its film-collapse temperature reaches it at the pace it cools (over the last fifth of the
-      film's time); then the surface's and the hottest node's drops to the end temperature (the limit holds at
-      the surface first, inside later) over the temperature limit (steps at 90 % of the limit, as the
-      controller aims), the austenite left over the phase-fraction limit -- counted as far as the incubation of
-      pearlite or bainite has run at some point (``incubation_share``: the limit holds only those, which form once
-      incubated) -- and the steps the growth factor needs to reach ``time.dt_max_s``. The scaling alone counts
-      the film's slow steps for all the cooling after it, which goes far faster once the film collapses.
+    * until the phase-fraction limit ``time.max_dX`` first holds, a count of what each limit still needs: while a
+      vapour film holds somewhere, the film's time left at the steps per simulated second since the first point's
+      film collapsed (:meth:`_film_steps`; not known until :data:`PACE_MIN_STEPS` steps after it, and no estimate
+      is shown meanwhile); then the surface's and the hottest node's drops to the end temperature over the
+      temperature limit ``time.max_dT_K`` (the limit holds at the surface first, inside later; steps at 90 % of
+      the limit, as the controller aims); the steps of the pearlite/bainite limit, :data:`STEPS_PER_LIMIT_OF_MEAN`
+      times the mean pearlite + bainite still to form (:func:`quenchsim.metallurgy.diffusional_fraction_to_come`,
+      each point cooling on at its own rate, asked every :data:`FORECAST_EVERY_STEPS` steps) over 0.9 ``max_dX``,
+      counted as far as the incubation of pearlite or bainite has run somewhere (``incubation_share``: the limit
+      holds only those, which form once incubated); and the steps the growth factor needs to reach
+      ``time.dt_max_s``. Once no film holds, the least of that count and the steps so far scaled by the cooling
+      still to do (the fraction above). Under a film the scaling is no guide: in an agitated bath the surface cools
+      the mean by a tenth in the film's first ~16 steps of up to 1.4 s, and ~600 steps of 0.03-0.13 s follow while
+      the wetting front runs over the surface (ring A condition 3); in still oil the film's slow steps would count
+      for all the cooling after it.
+    * once the phase-fraction limit has held: the least of the scaling and the forecast still to form over the
+      fraction formed per step since the limit first held, plus the drops and growth steps. The scaling alone
+      counts a pace that holds while the front runs through the part; near the end of the transformation most of
+      the austenite left turns to martensite instead (2.3-2.6x high on ring A).
 
-    The estimate shown never rises (:class:`TimeLeft`), so where the model must guess it errs high (the film
-    ends when its farthest point has cooled through its collapse temperature at its own pace, which a wetting
-    front overtakes; a later stage's Newton time starts from the mean as it is now), never low. Measured
-    (tests/test_progress.py, the estimate of :class:`TimeLeft` on the CPU clock; the share of the steps between
-    10 % and 90 % of the run within a factor 2 of the real time left and the range of estimate / real, the model
-    before in brackets): the small test ring 89 % counted in steps, 0.39..1.37 (the same: no film, the scaling
-    holds); the small ring with ``time.dt_max_s = 0.05`` 100 % in steps, 0.65..1.04 (none, 0.01..0.11: the
-    quench pace said nothing of a long air stage of capped steps); ring A condition 1 94 %, 0.66..2.70 (80 %, up to
-    4.7x high: the film's slow steps counted for the cooling after it; what is still high is after the
-    collapse, where the air stage's Newton time from the hot mean is long and the air steps cost half the CPU
-    time of the film's) and with ``time.max_dX = 0.01`` 100 %, 0.53..1.63 (84-100 %, 0.54..2.2); the peer race
-    in water 100 %, 0.63..1.30 (35 %, up to 5.5x high while the film held). Those numbers were taken with
-    ``time.max_dX`` limiting every phase at 0.1 (the former default). At today's default (0.002, pearlite and
-    bainite only) ~600 steps of the diffusional limit follow ring A's quench, and nothing during the quench foretells
-    them: counting every step at the quench's cost, the estimate started 0.39x low (71-76 %). Since the stress
-    solver steps only over the ``time.mechanics_*`` limits (multirate), those steps cost about half as much, and
-    :meth:`stress_steps_left` with :class:`TimeLeft`'s split of the time per thermal and per stress step counts
-    that: ring A 92-95 % (0.56..2.37), with ``time.max_dX = 0.01`` 84-90 % (0.65..2.65); the ratio passes 2 only in
-    the last ~10 % of the run (the air stage's Newton time from the hot mean). Counted at full weight, the austenite
-    left over 0.9 max_dX is what ring A needs and what the martensitic peer race never takes (29-39 %, 1.14..3.03);
-    weighted by the share of the pearlite/bainite incubation run so far (1 in ring A from step ~226 of 1127, long
-    before its ~600 steps of the diffusional limit; below 0.2 in the peer race until its film has collapsed), the
-    peer race is 76-100 % (1.05..2.24), ring A 93 % (0.80..2.32), with ``time.max_dX = 0.01`` 89 % (0.68..2.59)
-    (session 10, three peer-race runs, on a machine loaded by other work). With the forecast count once the
-    phase-fraction limit holds, and a stress count that takes the larger of its temperature and transformation
-    steps (before: their sum), all within a factor 2 over the window (session 11, idle machine): ring A 100 %
-    (0.54..1.49), with ``time.max_dX = 0.01`` 100 % (0.65..1.91), the peer race 100 % (0.95..1.61), with
-    ``time.max_dX = 0.01`` 100 % (0.75..1.52), the small ring 100 % (0.65..0.92); the small ring with
-    ``time.dt_max_s = 0.05`` 96 % on the CPU clock (0.95..2.67; 97 %, 0.90..2.62 before: its first steps cost twice
-    the later ones in a 2.5 s run). Low only early on ring A (nothing during the quench foretells the ~600 steps of
-    the diffusional limit), high while a film holds (its end is estimated late). A forecast from the start -- the
-    steel's CCT at a Newton-cooled core rate -- gave ring A's core 0.1-0.35 diffusional instead of 0.67
-    (docs/experiments/time_left_diffusional_forecast.md); the forecast kept is made only once the limit holds, from
-    each point's own state and rate, and on ring A it is within 0.03 of the pearlite + bainite still to form from
-    ~200 steps into the limit's ~600 (0.15 against 0.33 at its first step, when the scaling is the lesser)."""
+    The estimate shown never rises (:class:`TimeLeft`, which also prices the steps), so where the model must guess
+    it errs high, never low. Measured on every shipped quench case (the share of the steps between 10 % and 90 % of
+    the run whose estimate is within a factor 2 of the real time left, CPU clock, and the range of estimate / real;
+    docs/experiments/time_left_diffusional_forecast.md keeps the models before and how each was measured): ring A
+    conditions 1, 2, 3 100 % (0.69..1.44, 0.77..1.64, 0.63..1.91), condition 1 with ``time.max_dX = 0.01`` 100 %
+    (0.79..1.80); ring B conditions 4, 5 100 % (0.88..1.80, 0.85..1.86), 6 91-96 % in three runs (0.95..2.06: 9-10
+    steps without an estimate while the pace after the first wetting is measured, and the film's end estimated
+    late); the peer race 100 % (0.64..1.55), with ``time.max_dX = 0.01`` 100 % (0.55..1.49); the solid cylinder in
+    still oil 100 % (0.78..1.16). Before this model the agitated baths missed: ring A condition 3 65 % (0.18..1.63),
+    ring B 84 %, 85 %, 48 % (0.27..3.23)."""
 
     def __init__(self, T_start_C: float, T_end_C: float, T_sink_C: float, dt_max_s: float, max_dT_K: float,
                  max_dX: float, growth: float, mechanics_max_dT_K: float = 0.0, mechanics_max_dX: float = 0.0) -> None:
@@ -145,6 +145,7 @@ class CoolingProgress:
         self.mechanics_max_dT_K, self.mechanics_max_dX = mechanics_max_dT_K, mechanics_max_dX
         self._last: tuple[float, float] | None = None      # (time_s, mean nodal temperature) of the last call
         self._film: list[tuple[float, int, float]] = []     # (time_s, steps, film excess) while a film holds
+        self._wetting: tuple[float, int] | None = None     # (time_s, steps) when a point's film first collapsed
         self._phase_change_limited = False
         self._phase_change_start: tuple[int, float] | None = None   # (steps, diffusional fraction) when it first held
         self._forecast: tuple[int, float, float] | None = None      # (steps, diffusional fraction, to come) when asked
@@ -153,7 +154,8 @@ class CoolingProgress:
         return float(min(max((self.T_start_C - float(np.mean(T_nodes_C))) / self.span_K, 0.0), 1.0))
 
     def steps_left(self, now: StepState) -> float:
-        """The steps still to come after ``now.steps_done``."""
+        """The steps still to come after ``now.steps_done``; NaN while they cannot be told (a vapour film holds
+        and the pace of the steps once it collapses is not known yet, :meth:`_film_steps`)."""
         fraction, mean = self.fraction(now.T_nodes_C), float(np.mean(now.T_nodes_C))
         last, self._last = self._last, (now.time_s, mean)
         excess = mean - self.T_sink_C
@@ -172,8 +174,13 @@ class CoolingProgress:
         if self._phase_change_limited:
             counted = self._diffusional_steps(now)
         else:
-            counted = self._film_steps(now) + now.incubation_share * now.austenite_fraction / (0.9 * self.max_dX)
+            incubated = now.incubation_share * self._to_come(now) if now.incubation_share > 0.0 else 0.0
+            counted = self._film_steps(now) + STEPS_PER_LIMIT_OF_MEAN * incubated / (0.9 * self.max_dX)
         counted += self._drop_steps(now, self.max_dT_K) + self._growth_steps(now)
+        if math.isnan(counted):
+            return math.nan
+        if now.film_excess_K > 0.0 and not self._phase_change_limited:
+            return max(counted, at_dt_max)      # the mean's cooling under a film foretells nothing after it
         return max(min(scaled, counted), at_dt_max)
 
     def stress_steps_left(self, now: StepState, steps_left: float) -> float:
@@ -185,25 +192,38 @@ class CoolingProgress:
         the growth steps -- never more than the thermal steps (limits of 0: all of them)."""
         if self.mechanics_max_dT_K <= 0.0 or self.mechanics_max_dX <= 0.0:
             return steps_left
+        film = self._film_steps(now)
+        if math.isnan(film):
+            return steps_left
         cooling = max(self._drop_steps(now, self.mechanics_max_dT_K),
                       now.austenite_fraction / (0.9 * self.mechanics_max_dX))
-        return min(steps_left, self._film_steps(now) + cooling + self._growth_steps(now))
+        return min(steps_left, film + cooling + self._growth_steps(now))
 
     def _film_steps(self, now: StepState) -> float:
-        """The steps until the vapour film collapses everywhere (0 with no film); records ``now`` in the film's
-        history once (both :meth:`steps_left` and :meth:`stress_steps_left` ask)."""
+        """The steps until the vapour film collapses everywhere (0 with no film): the film's time left (the surface
+        point farthest above its collapse temperature reaching it at the pace it cools over the last
+        :data:`FILM_PACE_SHARE` of the film's time) at the steps per simulated second since the first point's film
+        collapsed. Where a film collapses the surface cools fastest (the transition and nucleate boiling), so the
+        temperature limit cuts the steps 10-30x below the film's (ring A condition 3: ~1 s steps for 16 steps, then
+        0.03-0.13 s for the ~600 steps while the wetting front runs over the surface); the film's own pace said
+        nothing of them. NaN (not known) until :data:`PACE_MIN_STEPS` steps have passed since a point first wetted.
+        Records ``now`` in the film's history once (both :meth:`steps_left` and :meth:`stress_steps_left` ask)."""
         if now.film_excess_K <= 0.0:
-            self._film = []
+            self._film, self._wetting = [], None
             return 0.0
         if not self._film or self._film[-1][:2] != (now.time_s, now.steps_done):
             self._film.append((now.time_s, now.steps_done, now.film_excess_K))
-        t0, steps0, _ = self._film[0]
+        if self._wetting is None and now.film_wetted_share > 0.0:
+            self._wetting = (now.time_s, now.steps_done)
+        if self._wetting is None or now.steps_done - self._wetting[1] < PACE_MIN_STEPS:
+            return math.nan
+        t0 = self._film[0][0]
         since = now.time_s - t0
-        t1, _, excess1 = next(f for f in self._film if f[0] >= t0 + 0.8 * since)
-        if now.time_s <= t1 or excess1 <= now.film_excess_K or now.steps_done <= steps0:
+        t1, _, excess1 = next(f for f in self._film if f[0] >= t0 + (1.0 - FILM_PACE_SHARE) * since)
+        if now.time_s <= t1 or excess1 <= now.film_excess_K:
             return math.inf
         film_left_s = now.film_excess_K * (now.time_s - t1) / (excess1 - now.film_excess_K)
-        return film_left_s * (now.steps_done - steps0) / since
+        return film_left_s * (now.steps_done - self._wetting[1]) / (now.time_s - self._wetting[0])
 
     def _drop_steps(self, now: StepState, max_dT_K: float) -> float:
         """The steps a temperature limit ``max_dT_K`` needs: it holds at the surface first, then inside, so the
@@ -227,10 +247,17 @@ class CoolingProgress:
         pace = (now.diffusional_fraction - formed0) / (now.steps_done - steps0)
         if not pace > 0.0:
             return math.inf
+        return self._to_come(now) / pace
+
+    def _to_come(self, now: StepState) -> float:
+        """The mean pearlite + bainite still to form (0 for a steel that forms none): ``now.diffusional_to_come``,
+        asked every :data:`FORECAST_EVERY_STEPS` steps, less what has formed since it was asked."""
+        if now.diffusional_to_come is None:
+            return 0.0
         if self._forecast is None or now.steps_done - self._forecast[0] >= FORECAST_EVERY_STEPS:
             self._forecast = (now.steps_done, now.diffusional_fraction, now.diffusional_to_come())
         _, formed_then, to_come = self._forecast
-        return max(to_come - (now.diffusional_fraction - formed_then), 0.0) / pace
+        return max(to_come - (now.diffusional_fraction - formed_then), 0.0)
 
     def _newton_time_s(self, excess_K: float, rate_per_s: float) -> float:
         """When the mean's excess over the ambient, decaying at ``rate_per_s``, reaches the end's excess."""
@@ -255,35 +282,63 @@ def film_collapse_temperatures(T_grid_C: np.ndarray, htc_W_m2K: np.ndarray, peak
 
 class TimeLeft:
     """A time-left estimate that never rises: the raw estimate (the steps left, :meth:`CoolingProgress.steps_left`,
-    at the average wall time per step so far) is followed while it falls and held while it rises; none is given
-    before ``warmup_fraction`` of the cooling is done (the first steps' pace says little). ``history`` keeps every
-    ``(elapsed_s, fraction, raw_estimate_s, estimate_s)``, elapsed from the first step, for checking the estimate
-    after the run."""
+    at the time per step over the recent steps) is followed while it falls and held while it rises; none is given
+    before ``warmup_fraction`` of the cooling is done (the first steps' pace says little), nor while the steps left
+    are not known (NaN). The time per step is taken over the last :data:`PRICE_WINDOW_SHARE` of the steps: a step
+    while a wetting front runs over the surface costs 3-4x one of the pearlite/bainite limit that follows (ring A
+    condition 3: 25 ms against 9 ms of thermal solve, and a stress step at every step against one in ten), and the
+    steps where the vapour film first collapses are the dearest of all (the thermal iteration fails and the step is
+    cut), so the average since the start priced the rest of the run at the quench's cost. ``history`` keeps every
+    ``(elapsed_s, fraction, raw_estimate_s, estimate_s)`` from the warm-up on (NaN where none was given), elapsed
+    from the first step, for checking the estimate after the run."""
 
     def __init__(self, clock: Callable[[], float] = time.perf_counter, warmup_fraction: float = 0.1) -> None:
         self.clock = clock
         self.warmup_fraction = warmup_fraction
-        self.first: tuple[float, int, int] | None = None   # (clock, steps, stress steps) at the first step seen
+        self.seen: list[tuple[float, int, int, float, float]] = []  # (clock, steps, stress steps, stress_s, thermal_s)
+        self._steps: list[int] = []                                 # the steps of ``seen``, for the window's start
         self.shown_s: float | None = None
         self.history: list[tuple[float, float, float, float]] = []
 
     def update(self, fraction: float, steps_done: int, steps_left: float, stress_steps_done: int = 0,
-               stress_steps_left: float = 0.0, stress_share: float = 0.0) -> float | None:
-        """``stress_share``: the share of the time so far that went to the stress steps (those of a multirate
-        run are fewer than its thermal steps, and each costs more): the time per thermal step and per stress step
-        are taken apart and each multiplies its own count of steps left."""
+               stress_steps_left: float = 0.0, stress_s: float = 0.0, thermal_s: float = 0.0) -> float | None:
+        """``stress_s`` and ``thermal_s``: the seconds so far in the stress steps and in the thermal steps, by the
+        run's timers (a multirate run's stress steps are fewer than its thermal steps, and each costs more): the
+        share of the stress steps in the clock's time over the window splits it into a time per thermal step and
+        one per stress step, each multiplying its own count of steps left."""
         now = self.clock()
-        if self.first is None:
-            self.first = (now, steps_done, stress_steps_done)
-        elapsed, steps = now - self.first[0], steps_done - self.first[1]
-        stress_steps = stress_steps_done - self.first[2]
+        self.seen.append((now, steps_done, stress_steps_done, stress_s, thermal_s))
+        self._steps.append(steps_done)
+        first = self.seen[0]
+        elapsed, steps = now - first[0], steps_done - first[1]
         if fraction < self.warmup_fraction or elapsed <= 0.0 or steps < 1:
             return None
-        stress_s = elapsed * stress_share if stress_steps >= 1 else 0.0
-        raw = (elapsed - stress_s) / steps * steps_left + stress_s / max(stress_steps, 1) * stress_steps_left
+        if math.isnan(steps_left):
+            self.history.append((elapsed, fraction, math.nan, math.nan if self.shown_s is None else self.shown_s))
+            return self.shown_s
+        raw = self._price(steps_left, stress_steps_left)
         self.shown_s = raw if self.shown_s is None else min(self.shown_s, raw)
         self.history.append((elapsed, fraction, raw, self.shown_s))
         return self.shown_s
+
+    def _price(self, steps_left: float, stress_steps_left: float) -> float:
+        """The seconds ``steps_left`` thermal steps with ``stress_steps_left`` stress steps among them take at the
+        prices of the window (of the whole run so far where the window has no stress step to price). Steps that
+        cost more than :data:`PRICE_OUTLIER_FACTOR` times the median step are left out: they are the one-off
+        steps where the vapour film first collapses, not a price of the steps to come."""
+        taken = self._steps[-1] - self._steps[0]
+        window = min(taken, max(PRICE_WINDOW_MIN_STEPS, int(PRICE_WINDOW_SHARE * taken)))
+        first = bisect.bisect_right(self._steps, self._steps[-1] - window) - 1
+        if self.seen[-1][2] == self.seen[first][2] and stress_steps_left > 0.0:
+            first = 0
+        typical = bisect.bisect_right(self._steps, self._steps[-1] - max(window, PRICE_MEDIAN_MIN_STEPS)) - 1
+        step_s = np.diff(np.array(self.seen)[max(min(first, typical), 0):, 0])
+        per_step = np.diff(np.array(self.seen[first:]), axis=0)   # (clock, steps, stress steps, stress_s, thermal_s)
+        kept = per_step[per_step[:, 0] <= PRICE_OUTLIER_FACTOR * np.median(step_s)].sum(axis=0)
+        clock_s, steps, stress_steps, stress_s, thermal_s = kept
+        stress_time_s = clock_s * stress_s / (stress_s + thermal_s) if stress_s + thermal_s > 0.0 else 0.0
+        return ((clock_s - stress_time_s) / max(steps, 1.0) * steps_left
+                + stress_time_s / max(stress_steps, 1.0) * stress_steps_left)
 
 
 class RunProgress:
@@ -306,9 +361,9 @@ class RunProgress:
         log.info("%s: %s", self.label, name)
 
     def update(self, time_s: float, fraction: float, steps_done: int, steps_left: float, stress_steps_done: int = 0,
-               stress_steps_left: float = 0.0, stress_share: float = 0.0) -> None:
+               stress_steps_left: float = 0.0, stress_s: float = 0.0, thermal_s: float = 0.0) -> None:
         left = self.time_left.update(fraction, steps_done, steps_left, stress_steps_done, stress_steps_left,
-                                     stress_share)
+                                     stress_s, thermal_s)
         done = min(int(fraction * STEPS), STEPS - 1)      # full only when the stages are done
         text = f"{time_s:.1f} s simulated of up to {self.total_s:.0f} s"
         self.bar.set_postfix_str(text if left is None else f"{text}, ~{_clock(left)} left", refresh=False)

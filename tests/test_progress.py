@@ -15,7 +15,8 @@ from tqdm import TqdmWarning
 
 from quenchsim.case import case_from_dict, load_case
 from quenchsim.pipeline import QuenchRun
-from quenchsim.progress import (FORECAST_EVERY_STEPS, PACE_MIN_STEPS, STEPS, CoolingProgress, RunProgress, StepState,
+from quenchsim.progress import (FORECAST_EVERY_STEPS, PACE_MIN_STEPS, STEPS, STEPS_PER_LIMIT_OF_MEAN,
+                                CoolingProgress, RunProgress, StepState,
                                 TimeLeft, film_collapse_temperatures)
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -56,10 +57,10 @@ def test_one_bar_names_its_phases_and_ends_full_without_warning(tmp_path, caplog
 
 def within_factor_2(elapsed, estimate, end):
     """The share of the steps between 10 % and 90 % of the run whose estimate is within a factor 2 of the real
-    time left, and the range of estimate / real."""
+    time left (a step without an estimate, NaN, is a miss), and the range of estimate / real."""
     window = (elapsed > 0.1 * end) & (elapsed < 0.9 * end)
     ratio = estimate[window] / (end - elapsed[window])
-    return float(np.mean((ratio >= 0.5) & (ratio <= 2.0))), ratio.min(), ratio.max()
+    return float(np.mean((ratio >= 0.5) & (ratio <= 2.0))), np.nanmin(ratio), np.nanmax(ratio)
 
 
 def test_the_time_left_never_rises_and_is_within_a_factor_2_on_the_small_ring(tmp_path):
@@ -111,22 +112,23 @@ def test_the_stress_steps_left_count_the_mechanics_limits_and_never_exceed_the_t
     assert every_step.stress_steps_left(now, 1234.0) == 1234.0
 
 
-def test_the_pearlite_bainite_limit_counts_the_austenite_as_far_as_its_incubation_has_run():
-    """Closed form, no film: (surface drop + hottest drop) / (0.9 max_dT_K) + incubation share x austenite left /
-    (0.9 max_dX) + the growth steps; the stress solver's count keeps all the austenite (its phase-fraction limit
-    holds martensite too; here its drop steps are the larger)."""
-    progress = CoolingProgress(850.0, 40.0, 20.0, dt_max_s=8.0, max_dT_K=20.0, max_dX=0.002, growth=2.0,
+def test_before_the_pearlite_bainite_limit_holds_it_counts_the_forecast_as_far_as_the_incubation_has_run():
+    """Closed form, no film: (surface drop + hottest drop) / (0.9 max_dT_K) + incubation share x 3.5 x the forecast
+    of the pearlite + bainite still to form (0.2) / (0.9 max_dX) + the growth steps (the limit holds at the
+    fastest-transforming point, the mean forms at the front's pace: 3.3-3.7x on ring A); the stress solver's count
+    keeps all the austenite (its phase-fraction limit holds martensite too; here its drop steps are the larger)."""
+    progress = CoolingProgress(850.0, 40.0, 20.0, dt_max_s=8.0, max_dX=0.002, max_dT_K=20.0, growth=2.0,
                                mechanics_max_dT_K=20.0, mechanics_max_dX=0.02)
     counts = {}
     for share in (0.0, 0.5, 1.0):
         now = StepState(steps_done=10000, time_s=20.0, T_nodes_C=np.array([300.0, 500.0]), dt_next_s=1.0,
                         stage_clock_left_s=100.0, ends_on_temperature=False, surface_mean_C=300.0,
-                        austenite_fraction=0.5, incubation_share=share)
+                        austenite_fraction=0.5, incubation_share=share, diffusional_to_come=lambda: 0.2)
         counts[share] = progress.steps_left(now)
         assert progress.stress_steps_left(now, 1e4) == pytest.approx((260.0 + 460.0) / 18.0 + 3.0)
     assert counts[0.0] == pytest.approx((260.0 + 460.0) / 18.0 + 3.0)
-    assert counts[0.5] == pytest.approx(counts[0.0] + 0.5 * 0.5 / 0.0018)
-    assert counts[1.0] == pytest.approx(counts[0.0] + 0.5 / 0.0018)
+    assert counts[0.5] == pytest.approx(counts[0.0] + 0.5 * STEPS_PER_LIMIT_OF_MEAN * 0.2 / 0.0018)
+    assert counts[1.0] == pytest.approx(counts[0.0] + STEPS_PER_LIMIT_OF_MEAN * 0.2 / 0.0018)
 
 
 def test_once_the_pearlite_bainite_limit_holds_its_steps_are_the_forecast_over_the_pace_seen():
@@ -159,6 +161,35 @@ def test_once_the_pearlite_bainite_limit_holds_its_steps_are_the_forecast_over_t
     assert len(asked) == 2
 
 
+def test_while_a_film_holds_the_steps_left_count_the_film_time_at_the_pace_since_the_first_wetting():
+    """Closed form: a film whose farthest point is 300 - 5 t K above its collapse temperature (so 60 - t s left),
+    16 steps of a growing dt to t = 8 s with no point wetted, then a point wets at step 20 (t = 10 s) and steps of
+    0.05 s follow. Until then, and for PACE_MIN_STEPS steps after, the steps left are not known (NaN, no estimate
+    shown); at step 28 (t = 10.4 s) the film's 49.6 s left at the 20 steps per second since the wetting are 992
+    steps, plus the surface's and the hottest node's drops over 0.9 max_dT_K and the growth steps to dt_max. The
+    film's own pace (28 steps in 10.4 s) would have counted 134; the steps so far scaled by the cooling still to do
+    (28 x 0.904 / 0.096 = 264) are no cap while the film holds (the mean cooled by the surface under the film)."""
+    progress = CoolingProgress(850.0, 40.0, 20.0, dt_max_s=8.0, max_dT_K=20.0, max_dX=0.002, growth=2.0)
+    ticks = iter(range(1000))
+    time_left = TimeLeft(clock=lambda: float(next(ticks)), warmup_fraction=0.0)
+
+    def state(steps: int, time_s: float, wetted: float) -> StepState:
+        return StepState(steps_done=steps, time_s=time_s, T_nodes_C=np.array([700.0, 845.0]), dt_next_s=0.05,
+                         stage_clock_left_s=100.0, ends_on_temperature=False, surface_mean_C=800.0,
+                         film_excess_K=300.0 - 5.0 * time_s, film_wetted_share=wetted)
+
+    film = [(k, 0.5 * k, 0.0) for k in range(1, 17)] + [(17 + k, 8.5 + 0.5 * k, 0.0) for k in range(3)]
+    film += [(20 + k, 10.0 + 0.05 * k, 0.1) for k in range(PACE_MIN_STEPS)]
+    for steps, time_s, wetted in film:
+        left = progress.steps_left(state(steps, time_s, wetted))
+        assert math.isnan(left) and progress.stress_steps_left(state(steps, time_s, wetted), left) is left
+        assert time_left.update(0.5, steps, left) is None
+    others = (760.0 + 805.0) / 18.0 + math.log2(8.0 / 0.05)
+    assert progress.steps_left(state(28, 10.4, 0.1)) == pytest.approx(49.6 * 20.0 + others)
+    history = np.array(time_left.history)
+    assert len(history) == len(film) - 1 and np.isnan(history[:, 2:]).all()
+
+
 def test_the_stress_steps_left_while_a_film_holds_after_the_phase_change_limit_took_over():
     """Regression: once the phase-fraction limit has held, :meth:`CoolingProgress.steps_left` no longer looks at the
     film, so the film's history lacked the latest steps and the stress count raised StopIteration (ring A condition 3
@@ -168,9 +199,10 @@ def test_the_stress_steps_left_while_a_film_holds_after_the_phase_change_limit_t
     for steps, time_s, limited in ((10, 1.0, False), (20, 2.0, False), (300, 10.0, True), (400, 12.0, True)):
         now = StepState(steps_done=steps, time_s=time_s, T_nodes_C=np.array([600.0, 800.0]), dt_next_s=0.1,
                         stage_clock_left_s=100.0, ends_on_temperature=False, surface_mean_C=600.0,
-                        film_excess_K=60.0 - time_s, austenite_fraction=0.9, limited_by_phase_change=limited)
-        left = progress.steps_left(now)
-        assert 0.0 < progress.stress_steps_left(now, left) <= left
+                        film_excess_K=60.0 - time_s, film_wetted_share=0.5, austenite_fraction=0.9,
+                        limited_by_phase_change=limited)
+        left = progress.steps_left(now)      # NaN at the first step: the pace since the first wetting is not known
+        assert math.isnan(left) or 0.0 < progress.stress_steps_left(now, left) <= left
 
 
 def test_the_time_left_prices_thermal_and_stress_steps_apart():
@@ -178,8 +210,33 @@ def test_the_time_left_prices_thermal_and_stress_steps_apart():
     0.3 s per stress step, so 50 thermal steps left with 5 stress steps cost 2 + 1.5 s."""
     clock = iter([0.0, 10.0])
     time_left = TimeLeft(clock=lambda: next(clock), warmup_fraction=0.0)
-    assert time_left.update(0.5, 0, 1.0, 0, 0.0, 0.0) is None          # the first call sets the origin
-    assert time_left.update(0.6, 100, 50.0, 20, 5.0, 0.6) == pytest.approx(0.04 * 50 + 0.3 * 5)
+    assert time_left.update(0.5, 0, 1.0, 0, 0.0, 0.0, 0.0) is None          # the first call sets the origin
+    assert time_left.update(0.6, 100, 50.0, 20, 5.0, 6.0, 4.0) == pytest.approx(0.04 * 50 + 0.3 * 5)
+
+
+def test_the_time_left_prices_the_steps_over_the_last_30_percent_of_them():
+    """100 steps of 1 s, then 100 of 0.1 s (none a stress step): the window is the last 60 steps, all at 0.1 s, so
+    50 steps left cost 5 s (the average since the start, 0.55 s a step, would say 27.5 s); after 10 steps of the
+    cheap ones the window is the last 33 steps, 23 of them dear: (23 x 1 + 10 x 0.1) / 33 s a step."""
+    clock = iter([0.0] + [1.0 * k for k in range(1, 101)] + [100.0 + 0.1 * k for k in range(1, 101)])
+    time_left = TimeLeft(clock=lambda: next(clock), warmup_fraction=0.0)
+    estimates = [time_left.update(0.5, k, 50.0) for k in range(201)]
+    assert estimates[110] == pytest.approx(50.0 * 24.0 / 33.0) and estimates[110] < estimates[109]
+    assert time_left.history[-1][2] == pytest.approx(50.0 * 0.1)
+
+
+def test_the_time_left_leaves_out_a_step_dearer_than_three_times_the_median():
+    """40 steps of 0.1 s, the 36th 3 s (a try thrown away where the film collapses): the window is the last 12
+    steps, and 20 steps left cost 2 s, not the 6.6 s of the window's mean; a step of 0.25 s (a refactorisation)
+    is kept: (11 x 0.1 + 0.25) / 12 s a step. Eight dear steps of ten in the window are still one-offs: the median
+    is taken over the last 50 steps (here all 40)."""
+    for dear_s, expected_s, dear in ((3.0, 20 * 0.1, [35]), (0.25, 20 * 1.35 / 12, [35]),
+                                     (3.0, 20 * 0.1, list(range(30, 38)))):
+        ticks = np.concatenate([[0.0], np.cumsum(np.where(np.isin(np.arange(40), dear), dear_s, 0.1))])
+        clock = iter(ticks)
+        time_left = TimeLeft(clock=lambda: next(clock), warmup_fraction=0.0)
+        estimates = [time_left.update(0.5, k, 20.0) for k in range(41)]
+        assert time_left.history[-1][2] == pytest.approx(expected_s) and estimates[-1] <= expected_s + 1e-12
 
 
 def test_a_boiling_curve_has_a_film_collapse_temperature_and_convection_has_none():
@@ -194,41 +251,36 @@ def test_a_boiling_curve_has_a_film_collapse_temperature_and_convection_has_none
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("overrides, measured, required",
-                         [({}, "1.00 (0.54..1.49); 0.93 (0.80..2.32) before the forecast of the pearlite/bainite "
-                               "steps, 0.92-0.95 (0.56..2.37) before the incubation weight", 0.95),
-                          ({"time.max_dX": 0.01}, "1.00 (0.65..1.91); 0.89 (0.68..2.59) before the forecast", 0.9)],
-                         ids=["default", "max_dX_0.01"])
-def test_the_time_left_on_ring_A_is_within_a_factor_2_for_most_of_the_run(tmp_path, overrides, measured, required):
-    """Ring A condition 1 (~440 steps of vapour film in oil, then, at the default ``time.max_dX = 0.002``, ~600
-    steps held by the pearlite/bainite limit, then ~80 to the end), two step-control settings (``measured``: the
-    share, and the range of estimate / real time left, on the CPU clock). Nothing seen during the quench says that
-    ~600 steps of diffusional transformation follow; since they carry few stress steps (multirate) and the estimate
-    prices thermal and stress steps apart, the estimate starts ~0.56x low instead of ~0.4x. Once the limit holds, its
-    steps are the forecast of the pearlite + bainite still to form over the pace seen (before: the scaling of the
-    steps so far, up to 2.3-2.6x high in the last ~10 % of the window, where most of the austenite left turns to
-    martensite)."""
-    case = load_case(ROOT / "cases" / "crb_outer_ring.toml", "1", overrides=overrides)
+@pytest.mark.parametrize("case_file, condition, overrides, measured, required", [
+    ("crb_outer_ring.toml", "1", {}, "1.00 (0.69..1.44); 1.00 (0.54..1.49) before the film's pace since the first "
+                                     "wetting, 0.93 (0.80..2.32) before the forecast of the pearlite/bainite steps",
+     0.95),
+    ("crb_outer_ring.toml", "1", {"time.max_dX": 0.01}, "1.00 (0.79..1.80); 1.00 (0.65..1.91) before", 0.95),
+    ("crb_outer_ring.toml", "2", {}, "1.00 (0.77..1.64); 1.00 (0.62..1.75) before", 0.95),
+    ("crb_outer_ring.toml", "3", {}, "1.00 (0.63..1.91); 0.65 (0.18..1.63) before", 0.95),
+    ("srb_outer_ring.toml", "4", {}, "1.00 (0.88..1.80); 0.84 (0.55..3.23) before", 0.95),
+    ("srb_outer_ring.toml", "5", {}, "1.00 (0.85..1.86); 0.85 (0.56..2.83) before", 0.95),
+    ("srb_outer_ring.toml", "6", {}, "0.91-0.96 (0.95..2.06) in three runs, 9-10 steps without an estimate while "
+                                     "the pace after the first wetting is measured; 0.48 (0.27..2.16) before", 0.85),
+    ("peer_race_100Cr6.toml", None, {}, "1.00 (0.64..1.55); 1.00 (0.95..1.61) before", 0.95),
+    ("peer_race_100Cr6.toml", None, {"time.max_dX": 0.01}, "1.00 (0.55..1.49); 1.00 (0.75..1.52) before", 0.95),
+    ("solid_cylinder_still_oil.toml", None, {}, "1.00 (0.78..1.16); 1.00 (1.24..1.82) before", 0.95)],
+    ids=["A1", "A1_max_dX_0.01", "A2", "A3", "B4", "B5", "B6", "peer", "peer_max_dX_0.01", "cylinder"])
+def test_the_time_left_is_within_a_factor_2_for_most_of_every_shipped_quench(tmp_path, case_file, condition,
+                                                                              overrides, measured, required):
+    """Every shipped quench case (ring A in still oil, 1, and agitated, 2-3; ring B agitated, 4-6; the peer race
+    in water; the solid cylinder in still oil): the estimate never rises and is within a factor 2 of the real time
+    left for at least ``required`` of the steps between 10 % and 90 % of the run (CPU clock; a step without an
+    estimate counts as a miss; ring B condition 6, whose film's end is estimated late and whose misses sit near 2x,
+    varies 0.91-0.96 from run to run). ``measured``: the share and the range of estimate / real (session 12, then the model before
+    it: the film's steps at its own mean pace, the austenite left as the pearlite/bainite steps before the limit
+    held, the steps priced at the run's mean cost). The agitated baths missed: their film lets the step grow to
+    ~1 s for 16 steps before the wetting front's ~0.05 s steps, and the steps of the front cost 3-4x the
+    pearlite/bainite steps that follow (docs/experiments/time_left_diffusional_forecast.md)."""
+    case = load_case(ROOT / "cases" / case_file, condition, overrides=overrides)
     elapsed, estimate, end = recorded_run(case, tmp_path)
-    assert np.all(np.diff(estimate) <= 0.0)
+    shown = estimate[~np.isnan(estimate)]
+    assert len(shown) > 0.8 * len(estimate) and np.all(np.diff(shown) <= 0.0)
     share, low, high = within_factor_2(elapsed, estimate, end)
-    print(f"ring A {overrides}: share {share:.2f} ({low:.2f}..{high:.2f}); measured {measured}")
+    print(f"{case_file} {condition} {overrides}: share {share:.2f} ({low:.2f}..{high:.2f}); measured {measured}")
     assert share >= required, (share, low, high, measured)
-
-
-@pytest.mark.slow
-def test_the_time_left_on_the_peer_race_is_within_a_factor_2_for_most_of_the_run(tmp_path):
-    """The peer race in water (a vapour film that holds ~190 of its ~310 steps while the mean hardly moves, then
-    collapses within 0.3 s over most of the surface). Measured with ``time.max_dX = 0.1`` (limiting every phase,
-    the former default) 1.00 (0.63..1.30), the model before 0.35; at today's default, with thermal and stress steps
-    priced apart (multirate), 0.29-0.39 (1.14..3.03; every step at one cost before: 0.16-0.27, up to 4-6x high) while
-    the steps the pearlite/bainite limit may still need (the austenite left over 0.9 max_dX) were counted at full
-    weight: ring A needs them, this martensitic race never takes them. Weighted by the share of the incubation run
-    (below 0.2 here until the film has collapsed): 0.76-1.00 (1.05..2.24) in three runs on a loaded machine; with
-    the stress count taking the larger of its temperature and transformation steps (their sum before), 1.00
-    (0.89..1.61) in two runs (session 11). The estimate errs high (the film's end is estimated late), never low."""
-    elapsed, estimate, end = recorded_run(load_case(ROOT / "cases" / "peer_race_100Cr6.toml"), tmp_path)
-    assert np.all(np.diff(estimate) <= 0.0)
-    share, low, high = within_factor_2(elapsed, estimate, end)
-    print(f"peer race: share {share:.2f} ({low:.2f}..{high:.2f})")
-    assert share >= 0.75 and low >= 0.5 and high < 2.5, (share, low, high)
