@@ -9,7 +9,6 @@ left from what limits the step (:meth:`CoolingProgress.steps_left`) and never ri
 
 from __future__ import annotations
 
-import bisect
 import logging
 import math
 import sys
@@ -295,8 +294,8 @@ class TimeLeft:
     def __init__(self, clock: Callable[[], float] = time.perf_counter, warmup_fraction: float = 0.1) -> None:
         self.clock = clock
         self.warmup_fraction = warmup_fraction
-        self.seen: list[tuple[float, int, int, float, float]] = []  # (clock, steps, stress steps, stress_s, thermal_s)
-        self._steps: list[int] = []                                 # the steps of ``seen``, for the window's start
+        self._seen = np.empty((256, 5))     # per update: clock, steps, stress steps, stress_s, thermal_s
+        self._count = 0
         self.shown_s: float | None = None
         self.history: list[tuple[float, float, float, float]] = []
 
@@ -307,10 +306,11 @@ class TimeLeft:
         share of the stress steps in the clock's time over the window splits it into a time per thermal step and
         one per stress step, each multiplying its own count of steps left."""
         now = self.clock()
-        self.seen.append((now, steps_done, stress_steps_done, stress_s, thermal_s))
-        self._steps.append(steps_done)
-        first = self.seen[0]
-        elapsed, steps = now - first[0], steps_done - first[1]
+        if self._count == len(self._seen):
+            self._seen = np.concatenate([self._seen, np.empty_like(self._seen)])
+        self._seen[self._count] = (now, steps_done, stress_steps_done, stress_s, thermal_s)
+        self._count += 1
+        elapsed, steps = now - self._seen[0, 0], steps_done - self._seen[0, 1]
         if fraction < self.warmup_fraction or elapsed <= 0.0 or steps < 1:
             return None
         if math.isnan(steps_left):
@@ -326,14 +326,16 @@ class TimeLeft:
         prices of the window (of the whole run so far where the window has no stress step to price). Steps that
         cost more than :data:`PRICE_OUTLIER_FACTOR` times the median step are left out: they are the one-off
         steps where the vapour film first collapses, not a price of the steps to come."""
-        taken = self._steps[-1] - self._steps[0]
+        seen = self._seen[:self._count]
+        steps = seen[:, 1]
+        taken = steps[-1] - steps[0]
         window = min(taken, max(PRICE_WINDOW_MIN_STEPS, int(PRICE_WINDOW_SHARE * taken)))
-        first = bisect.bisect_right(self._steps, self._steps[-1] - window) - 1
-        if self.seen[-1][2] == self.seen[first][2] and stress_steps_left > 0.0:
+        first = int(np.searchsorted(steps, steps[-1] - window, side="right")) - 1
+        if seen[-1, 2] == seen[first, 2] and stress_steps_left > 0.0:
             first = 0
-        typical = bisect.bisect_right(self._steps, self._steps[-1] - max(window, PRICE_MEDIAN_MIN_STEPS)) - 1
-        step_s = np.diff(np.array(self.seen)[max(min(first, typical), 0):, 0])
-        per_step = np.diff(np.array(self.seen[first:]), axis=0)   # (clock, steps, stress steps, stress_s, thermal_s)
+        typical = int(np.searchsorted(steps, steps[-1] - max(window, PRICE_MEDIAN_MIN_STEPS), side="right")) - 1
+        step_s = np.diff(seen[max(min(first, typical), 0):, 0])
+        per_step = np.diff(seen[first:], axis=0)
         kept = per_step[per_step[:, 0] <= PRICE_OUTLIER_FACTOR * np.median(step_s)].sum(axis=0)
         clock_s, steps, stress_steps, stress_s, thermal_s = kept
         stress_time_s = clock_s * stress_s / (stress_s + thermal_s) if stress_s + thermal_s > 0.0 else 0.0
