@@ -205,7 +205,8 @@ class CoolingProgress:
         collapsed. Where a film collapses the surface cools fastest (the transition and nucleate boiling), so the
         temperature limit cuts the steps 10-30x below the film's (ring A condition 3: ~1 s steps for 16 steps, then
         0.03-0.13 s for the ~600 steps while the wetting front runs over the surface); the film's own pace said
-        nothing of them. NaN (not known) until :data:`PACE_MIN_STEPS` steps have passed since a point first wetted.
+        nothing of them. NaN (not known) until :data:`PACE_MIN_STEPS` steps have passed since a point first wetted,
+        and while the farthest point has not cooled over the last :data:`FILM_PACE_SHARE` of the film's time.
         Records ``now`` in the film's history once (both :meth:`steps_left` and :meth:`stress_steps_left` ask)."""
         if now.film_excess_K <= 0.0:
             self._film, self._wetting = [], None
@@ -220,7 +221,7 @@ class CoolingProgress:
         since = now.time_s - t0
         t1, _, excess1 = next(f for f in self._film if f[0] >= t0 + (1.0 - FILM_PACE_SHARE) * since)
         if now.time_s <= t1 or excess1 <= now.film_excess_K:
-            return math.inf
+            return math.nan        # the farthest point has not cooled over that time: the film's end is not known
         film_left_s = now.film_excess_K * (now.time_s - t1) / (excess1 - now.film_excess_K)
         return film_left_s * (now.steps_done - self._wetting[1]) / (now.time_s - self._wetting[0])
 
@@ -283,7 +284,7 @@ class TimeLeft:
     """A time-left estimate that never rises: the raw estimate (the steps left, :meth:`CoolingProgress.steps_left`,
     at the time per step over the recent steps) is followed while it falls and held while it rises; none is given
     before ``warmup_fraction`` of the cooling is done (the first steps' pace says little), nor while the steps left
-    are not known (NaN). The time per step is taken over the last :data:`PRICE_WINDOW_SHARE` of the steps: a step
+    are not known (NaN or infinite). The time per step is taken over the last :data:`PRICE_WINDOW_SHARE` of the steps: a step
     while a wetting front runs over the surface costs 3-4x one of the pearlite/bainite limit that follows (ring A
     condition 3: 25 ms against 9 ms of thermal solve, and a stress step at every step against one in ten), and the
     steps where the vapour film first collapses are the dearest of all (the thermal iteration fails and the step is
@@ -313,10 +314,10 @@ class TimeLeft:
         elapsed, steps = now - self._seen[0, 0], steps_done - self._seen[0, 1]
         if fraction < self.warmup_fraction or elapsed <= 0.0 or steps < 1:
             return None
-        if math.isnan(steps_left):
+        raw = self._price(steps_left, stress_steps_left) if math.isfinite(steps_left) else math.nan
+        if not math.isfinite(raw):
             self.history.append((elapsed, fraction, math.nan, math.nan if self.shown_s is None else self.shown_s))
             return self.shown_s
-        raw = self._price(steps_left, stress_steps_left)
         self.shown_s = raw if self.shown_s is None else min(self.shown_s, raw)
         self.history.append((elapsed, fraction, raw, self.shown_s))
         return self.shown_s

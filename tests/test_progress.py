@@ -190,6 +190,28 @@ def test_while_a_film_holds_the_steps_left_count_the_film_time_at_the_pace_since
     assert len(history) == len(film) - 1 and np.isnan(history[:, 2:]).all()
 
 
+def test_a_film_whose_farthest_point_has_not_cooled_gives_no_estimate():
+    """Regression (a run resumed under a film, CI at c5cba6c): the film's history starts again at the resume, and
+    while the farthest point has not cooled over the last tenth of it the film's end is not known. That was an
+    infinite count, which the steps so far no longer cap under a film: the time left came out infinite or NaN and
+    the bar's clock raised. Now the steps left are NaN, and the estimate shown stays as it was (none here)."""
+    progress = CoolingProgress(850.0, 40.0, 20.0, dt_max_s=8.0, max_dT_K=20.0, max_dX=0.002, growth=2.0,
+                               mechanics_max_dT_K=20.0, mechanics_max_dX=0.02)
+    bar = RunProgress("held film", 1.0, enabled=False, clock=iter(np.arange(100.0)).__next__)
+    bar.time_left.warmup_fraction = 0.0
+    for steps in range(1, 30):
+        now = StepState(steps_done=steps, time_s=0.05 * steps, T_nodes_C=np.array([700.0, 845.0]), dt_next_s=0.05,
+                        stage_clock_left_s=100.0, ends_on_temperature=False, surface_mean_C=800.0,
+                        film_excess_K=100.0, film_wetted_share=0.5)
+        left = progress.steps_left(now)
+        assert math.isnan(left)
+        bar.update(now.time_s, 0.5, steps, left, steps, progress.stress_steps_left(now, left), 1.0, 1.0)
+    assert bar.time_left.shown_s is None and np.isnan(np.array(bar.time_left.history)[:, 2:]).all()
+    time_left = TimeLeft(clock=iter([0.0, 1.0]).__next__, warmup_fraction=0.0)
+    assert time_left.update(0.5, 0, 10.0) is None and time_left.update(0.5, 1, math.inf) is None
+    assert np.isnan(time_left.history[-1][2])
+
+
 def test_the_stress_steps_left_while_a_film_holds_after_the_phase_change_limit_took_over():
     """Regression: once the phase-fraction limit has held, :meth:`CoolingProgress.steps_left` no longer looks at the
     film, so the film's history lacked the latest steps and the stress count raised StopIteration (ring A condition 3
