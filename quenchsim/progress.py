@@ -97,11 +97,13 @@ class CoolingProgress:
 
     The steps left (:meth:`steps_left`) come from the step limit that holds:
 
-    * the step at ``time.dt_max_s``: the simulated time left over that step, the time left being the stages'
-      clocks or, in a stage that ends on a temperature, when the mean's exponential decay towards the ambient
-      reaches the end temperature (Newton's cooling: its rate over the last step in that stage, before it the
-      stage's ``h A / C``). Since no step is longer, this is also a floor on every other estimate, so a long air
-      stage of capped steps is counted while the quench still runs.
+    * the fewest steps that cover the simulated time left, growing from the next step by ``time.growth`` up to
+      ``time.dt_max_s`` (:meth:`_steps_to_cover`), the time left being the stages' clocks or, in a stage that ends
+      on a temperature, when the mean's exponential decay towards the ambient reaches the end temperature
+      (Newton's cooling: its rate over the last step in that stage, before it the stage's ``h A / C``). Since no
+      step is longer or grows faster, this is also a floor on every other estimate, so a long air stage of capped
+      steps is counted while the quench still runs, and so are the growing steps of a short air stage (the small
+      ring of the tests: its last ~10 steps, counted as 3-5 by the scaling before this floor).
     * until the phase-fraction limit ``time.max_dX`` first holds, a count of what each limit still needs: while a
       vapour film holds somewhere, the film's time left at the steps per simulated second since the first point's
       film collapsed (:meth:`_film_steps`; not known until :data:`PACE_MIN_STEPS` steps after it, and no estimate
@@ -165,9 +167,9 @@ class CoolingProgress:
                 left_s = min(left_s, self._newton_time_s(excess, math.log(previous / excess) / (now.time_s - last[0])))
         for clock_s, rate_per_s in now.later_stages:      # from the mean as it is now: the part is no hotter then
             left_s += clock_s if rate_per_s is None else min(clock_s, self._newton_time_s(excess, rate_per_s))
-        at_dt_max = max(left_s, 0.0) / self.dt_max_s
+        floor = self._steps_to_cover(max(left_s, 0.0), now.dt_next_s)
         if now.dt_next_s >= 0.999 * self.dt_max_s:
-            return at_dt_max
+            return floor
         self._phase_change_limited |= now.limited_by_phase_change
         scaled = now.steps_done * (1.0 - fraction) / max(fraction, 1e-9)
         if self._phase_change_limited:
@@ -179,8 +181,8 @@ class CoolingProgress:
         if math.isnan(counted):
             return math.nan
         if now.film_excess_K > 0.0 and not self._phase_change_limited:
-            return max(counted, at_dt_max)      # the mean's cooling under a film foretells nothing after it
-        return max(min(scaled, counted), at_dt_max)
+            return max(counted, floor)      # the mean's cooling under a film foretells nothing after it
+        return max(min(scaled, counted), floor)
 
     def stress_steps_left(self, now: StepState, steps_left: float) -> float:
         """The stress steps among the ``steps_left`` thermal steps (:meth:`steps_left` of the same ``now``): the
@@ -230,6 +232,23 @@ class CoolingProgress:
         surface's and the hottest node's drops to the end temperature one after the other, at 90 % of the limit."""
         drop_K = max(now.surface_mean_C - self.T_end_C, 0.0) + max(float(np.max(now.T_nodes_C)) - self.T_end_C, 0.0)
         return drop_K / (0.9 * max_dT_K)
+
+    def _steps_to_cover(self, time_s: float, dt_s: float) -> float:
+        """The fewest steps that cover ``time_s`` of simulated time from a step of ``dt_s``: each step at most
+        ``growth`` times the one before and at most ``time.dt_max_s`` (the steps grow geometrically until they reach
+        dt_max, in (dt_max - dt) / (growth - 1) seconds, then hold at it). A floor on every other count.
+
+        >>> p = CoolingProgress(850.0, 40.0, 20.0, dt_max_s=120.0, max_dT_K=30.0, max_dX=0.02, growth=1.5)
+        >>> round(p._steps_to_cover(1.0 + 1.5 + 2.25, 1.0), 9)   # three steps growing by 1.5
+        3.0
+        >>> p._steps_to_cover(1200.0, 120.0)                    # ten steps at dt_max
+        10.0
+        """
+        dt_s = min(max(dt_s, 1e-12), self.dt_max_s)
+        growing_s = (self.dt_max_s - dt_s) / (self.growth - 1.0)
+        if time_s <= growing_s:
+            return math.log(1.0 + time_s * (self.growth - 1.0) / dt_s) / math.log(self.growth)
+        return math.log(self.dt_max_s / dt_s) / math.log(self.growth) + (time_s - growing_s) / self.dt_max_s
 
     def _growth_steps(self, now: StepState) -> float:
         """The steps the growth factor needs from the next step to ``time.dt_max_s``."""

@@ -72,7 +72,8 @@ def test_the_time_left_never_rises_and_is_within_a_factor_2_on_the_small_ring(tm
     elapsed, estimate, end = recorded_run(case_from_dict(plastic_ring()), tmp_path / "steps", clock="steps")
     assert np.all(np.diff(estimate) <= 0.0)
     share, low, high = within_factor_2(elapsed, estimate, end)
-    assert share >= 0.85, (share, low, high)                  # measured 0.89 (0.39..1.37), deterministic
+    # measured 1.00 (0.67..1.35), deterministic; 0.81 (0.33..1.35) before the floor of the growing steps
+    assert share >= 0.85, (share, low, high)
 
 
 def test_a_long_air_stage_of_capped_steps_is_counted_while_the_quench_runs(tmp_path):
@@ -306,3 +307,16 @@ def test_the_time_left_is_within_a_factor_2_for_most_of_every_shipped_quench(tmp
     share, low, high = within_factor_2(elapsed, estimate, end)
     print(f"{case_file} {condition} {overrides}: share {share:.2f} ({low:.2f}..{high:.2f}); measured {measured}")
     assert share >= required, (share, low, high, measured)
+
+
+def test_the_floor_counts_steps_growing_by_the_growth_factor_up_to_dt_max():
+    """Closed form: from a step dt growing by g per step, n steps cover dt (g^n - 1) / (g - 1) seconds until the
+    step reaches dt_max; after that each step covers dt_max."""
+    progress = CoolingProgress(850.0, 40.0, 20.0, dt_max_s=8.0, max_dT_K=30.0, max_dX=0.02, growth=2.0)
+    assert progress._steps_to_cover(1.0 + 2.0 + 4.0, 1.0) == pytest.approx(3.0)
+    assert progress._steps_to_cover(1.0 + 2.0 + 4.0 + 8.0 * 5, 1.0) == pytest.approx(3.0 + 5.0)
+    assert progress._steps_to_cover(80.0, 8.0) == pytest.approx(10.0)
+    T = np.full(10, 100.0)   # a stage of 7 s left from a 1 s step: 3 steps at least, whatever else counts fewer
+    now = StepState(steps_done=50, time_s=5.0, T_nodes_C=T, dt_next_s=1.0, stage_clock_left_s=7.0,
+                    ends_on_temperature=False, later_stages=[])
+    assert progress.steps_left(now) >= 3.0 - 1e-9
