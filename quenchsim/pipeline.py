@@ -362,8 +362,9 @@ class QuenchRun:
             self.bar.phase(f"{stage.name}: boundary HTC")
             with self.timer("bath_htc_s"):
                 htc = stage_htc(case, stage.name, self.points)
-            if position["stage_end_s"] is None:
+            if position["stage_end_s"] is None:  # the stage starts (not resumed within it)
                 position["stage_end_s"] = self.thermal.time_s + stage.duration_s
+                self.thermal.restart()
             t_end = position["stage_end_s"]
             later = [(st.duration_s, self._newton_rate_per_s(st) if math.isfinite(st.until_max_C) else None)
                      for st in plan[index + 1:]]

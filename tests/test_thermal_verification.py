@@ -9,9 +9,15 @@ def test_solid_cylinder_robin_matches_series_solution_within_half_percent():
     assert solid_cylinder_error(n_radial=24, dt_s=0.5) < 0.005
 
 
-def test_solid_cylinder_time_step_convergence_is_first_order():
-    ratio = solid_cylinder_error(24, 2.0) / solid_cylinder_error(24, 1.0)
+def test_solid_cylinder_time_step_convergence_is_first_order_for_backward_euler():
+    ratio = solid_cylinder_error(24, 2.0, order=1) / solid_cylinder_error(24, 1.0, order=1)
     assert 1.6 < ratio < 2.4  # backward Euler: error ~ dt
+
+
+def test_solid_cylinder_time_step_convergence_is_second_order_for_bdf2():
+    errors = [solid_cylinder_error(24, dt) for dt in (4.0, 2.0, 1.0)]
+    assert all(3.6 < coarse / fine < 4.6 for coarse, fine in zip(errors, errors[1:]))  # BDF2: error ~ dt^2
+    assert errors[1] < 0.2 * solid_cylinder_error(24, 2.0, order=1)
 
 
 def test_hollow_cylinder_transient_robin_on_bore_and_od_matches_eigenfunction_series():
@@ -52,11 +58,13 @@ def test_one_pass_system_equals_the_sum_of_mass_stiffness_and_robin():
     assert np.abs(fe.system(m, k, h).toarray() - expected).max() < 1e-13 * np.abs(expected).max()
 
 
-def test_step_through_a_boiling_curve_solves_the_nonlinear_step_equations():
+@pytest.mark.parametrize("order", [1, 2])
+def test_step_through_a_boiling_curve_solves_the_nonlinear_step_equations(order):
     """Transition boiling: q = h(T_s)(T_s - T_oil) falls with T_s between 450 and 650 C, so the exact flux
     derivative is negative there. Each step (exact derivative first, damped once a correction grows) must
-    solve the implicit step equations  C (T - T_old)/dt + K T + int q(T_s) phi r ds = 0  to within the
-    Picard tolerance: the remaining residual, as a temperature correction, is below 0.1 K."""
+    solve the implicit step equations  C (a0 (T - T_old) - a2 (T_old - T_prev))/dt + K T + int q(T_s) phi r ds = 0
+    to within the Picard tolerance: the remaining residual, as a temperature correction, is below 0.1 K.
+    Backward Euler: a0 = 1, a2 = 0; BDF2 at a constant step: a0 = 3/2, a2 = 1/2 after a first backward-Euler step."""
     import numpy as np
     import scipy.sparse.linalg as spla
 
@@ -69,16 +77,21 @@ def test_step_through_a_boiling_curve_solves_the_nonlinear_step_equations():
     T_s = np.array([500.0, 600.0])
     q = np.interp(T_s, T_tab, h_tab) * (T_s - 60.0)
     assert q[1] < q[0]  # the flux falls with the surface temperature in this range
-    solver, dt = make(), 0.5
+    solver, dt = make(order=order), 0.5
     solver.T[:] = 620.0
     rho_cp, k = np.full(fe.r_qp.shape, RHO_KG_M3 * CP_J_KGK), np.full(fe.r_qp.shape, K_W_MK)
-    linear = fe.system(rho_cp / dt, k, np.zeros(fe.facet_r.shape))
-    for _ in range(4):
+    T_prev = None
+    for n in range(4):
+        a0, a2 = (1.0, 0.0) if order == 1 or n == 0 else (1.5, 0.5)
         step = solver.try_step(dt, htc)
         Ts = fe.at_facet_qp(step.T)
-        residual = (linear @ step.T - fe.load(rho_cp * fe.at_qp(solver.T) / dt)
+        T_old = fe.at_qp(solver.T)
+        history = T_old if a2 == 0.0 else T_old + (a2 / a0) * (T_old - T_prev)
+        linear = fe.system(a0 * rho_cp / dt, k, np.zeros(fe.facet_r.shape))
+        residual = (linear @ step.T - fe.load(a0 * rho_cp * history / dt)
                     + fe.robin_load(htc(Ts.reshape(-1), 0.0).reshape(Ts.shape) * (Ts - 60.0)))
         assert np.abs(spla.spsolve(linear.tocsc(), residual)).max() < 0.1
+        T_prev = T_old
         solver.commit(step)
     assert solver.T.min() < 450.0  # the surface did cool through the boiling range
 

@@ -17,9 +17,10 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 
-FORMAT_VERSION = 2
+FORMAT_VERSION = 3
 """Written into every checkpoint; a file of another version is not resumed. 2: the stress solver's state since
-its last step (multirate stress steps) and the CG iterations since its last factorisation were added."""
+its last step (multirate stress steps) and the CG iterations since its last factorisation were added. 3: the
+thermal solver's last step (BDF2 history)."""
 _HEADER = "__header__"
 _NONE = "__none__"
 _CSR = "__csr__"
