@@ -44,6 +44,8 @@ from quenchsim.results.summary import (FinalSection, hardness_summary, probe_tim
 from quenchsim.thermal import AxisymmetricP2, ImmersionHTC, SurfaceTemperatureHTC, ThermalSolver, parse_htc_table
 
 log = logging.getLogger("quenchsim")
+MAX_STRESS_STEPS_PER_THERMAL_STEP = 64
+"""Bound on the stress steps that one thermal step beyond the ``time.mechanics_*`` limits is split into."""
 
 
 @dataclass
@@ -550,25 +552,57 @@ class QuenchRun:
     def _beyond_mechanics_limits(self, T_qp: np.ndarray, fractions: dict[str, np.ndarray]) -> bool:
         """Whether the change from the last stress step to (T_qp, fractions) exceeds ``time.mechanics_max_dT_K``
         or ``time.mechanics_max_dX``."""
+        return self._mechanics_limit_ratio(T_qp, fractions) > 1.0
+
+    def _mechanics_limit_ratio(self, T_qp: np.ndarray, fractions: dict[str, np.ndarray]) -> float:
+        """The change from the last stress step to (T_qp, fractions) over the ``time.mechanics_*`` limits: the
+        larger of the temperature change over ``mechanics_max_dT_K`` and any phase change over
+        ``mechanics_max_dX`` (inf where a change meets a limit of 0)."""
         ctl = self.case.time
         T_ref, X_ref = self.mech_ref
-        if float(np.max(np.abs(T_qp - T_ref))) > ctl.mechanics_max_dT_K:
-            return True
-        return any(float(np.max(np.abs(X - X_ref.get(p, 0.0)))) > ctl.mechanics_max_dX for p, X in fractions.items())
+
+        def ratio(change: float, limit: float) -> float:
+            return change / limit if limit > 0.0 else (math.inf if change > 0.0 else 0.0)
+
+        dX = max((float(np.max(np.abs(X - X_ref.get(p, 0.0)))) for p, X in fractions.items()), default=0.0)
+        return max(ratio(float(np.max(np.abs(T_qp - T_ref))), ctl.mechanics_max_dT_K),
+                   ratio(dX, ctl.mechanics_max_dX))
 
     def _mechanics_with(self, step: Any) -> bool:
         """The stress solver's part of a thermal step about to be committed (multirate: the stress solver is
         rate-independent, so it steps only when the change since its last step would exceed the time.mechanics_*
-        limits). The thermal steps since its last step are first caught up to the committed state, then ``step``
-        is taken when it alone exceeds the limits. False when that last stress step does not converge (the
-        caller cuts the thermal step, as when every step is a stress step)."""
+        limits). The thermal steps since its last step are first caught up to the committed state; then, when
+        ``step`` alone exceeds the limits, it is taken in as many stress steps as keep each within them, along its
+        own path. False when the first of them does not converge (nothing is committed and the caller cuts the
+        thermal step, as when every step is a stress step); a later one that does not converge is halved
+        (:meth:`_mechanics_to`)."""
         if self.mech is None or not self._beyond_mechanics_limits(step.T_qp, step.phase_state.fractions):
             return True
         self._mechanics_catch_up()  # raises SolverError if even sub-steps fail (committed steps cannot be cut)
-        if not self._beyond_mechanics_limits(step.T_qp, step.phase_state.fractions):
+        T1, X1 = step.T_qp, self.phase_model.fractions(step.phase_state)
+        ratio = self._mechanics_limit_ratio(T1, X1)
+        if ratio <= 1.0:
             return True
-        with self.timer("mechanics_s"):
-            return self._mechanics_step(step.T_qp, step.phase_state.fractions)
+        # a thermal step beyond the limits is split into as many stress steps as keep each within them, along the
+        # step's own path: the temperatures linear in time, the phases as the kinetics form them on that path
+        # (martensite, for one, is not linear in T: a straight line in (T, X) moved ring B's dimensions by ~0.04 mm)
+        parts = int(min(math.ceil(ratio), MAX_STRESS_STEPS_PER_THERMAL_STEP)) if math.isfinite(ratio) else 1
+        T0, state0 = self.thermal.T_qp, self.thermal.phase_state
+        for k in range(1, parts + 1):
+            if k == parts:
+                T, X = T1, X1
+            else:
+                T = T0 + (k / parts) * (T1 - T0)
+                X = self.phase_model.fractions(self.phase_model.advance(state0, T0, T, (k / parts) * step.dt_s))
+            with self.timer("mechanics_s"):
+                converged = self._mechanics_step(T, X)
+            if not converged:
+                if k == 1:
+                    return False  # nothing committed: the caller cuts the thermal step
+                self._mechanics_to(T1, X1, f"at t = {self.thermal.time_s + step.dt_s:.4g} s",
+                                   share=1.0 / (parts - k + 1))
+                return True
+        return True
 
     def _mechanics_catch_up(self) -> None:
         """Bring the stress solver to the committed thermal state (its change since the last stress step spans
@@ -577,16 +611,19 @@ class QuenchRun:
             self._mechanics_to(self.thermal.T_qp, self.thermal.fractions(),
                                f"catching up to t = {self.thermal.time_s:.4g} s")
 
-    def _mechanics_to(self, T_end: np.ndarray, X_end: dict[str, np.ndarray], what: str) -> None:
-        """Stress steps from the last one's state to (T_end, X_end): one step, or, when it does not converge,
-        sub-steps along the straight path between the two states (halving down to 1/64 of the change)."""
+    def _mechanics_to(self, T_end: np.ndarray, X_end: dict[str, np.ndarray], what: str, share: float = 1.0) -> None:
+        """Stress steps from the last one's state to (T_end, X_end) along the straight path between the two states,
+        each ``share`` of the change (one step by default); a step that does not converge is halved, down to 1/64
+        of the first."""
         T_ref, X_ref = self.mech_ref
         if np.array_equal(T_end, T_ref) and all(np.all(X == X_ref.get(p, 0.0)) for p, X in X_end.items()):
             return      # already there (no change since the last stress step)
+        smallest = share / 64.0
         with self.timer("mechanics_s"):
-            done, share = 0.0, 1.0
-            while done < 1.0:
+            done = 0.0
+            while done < 1.0 - 1e-12:
                 s = min(1.0, done + share)
+                s = 1.0 if s > 1.0 - 1e-9 else s
                 T = T_ref + s * (T_end - T_ref) if s < 1.0 else T_end
                 X = ({p: X_ref.get(p, 0.0) + s * (v - X_ref.get(p, 0.0)) for p, v in X_end.items()} if s < 1.0
                      else X_end)
@@ -594,9 +631,9 @@ class QuenchRun:
                     done = s
                     continue
                 share /= 2.0
-                if share < 1.0 / 64.0:
-                    raise SolverError(f"the stress solver did not converge {what} even in sub-steps of 1/64 of the "
-                                      "change since its last step")
+                if share < smallest:
+                    raise SolverError(f"the stress solver did not converge {what} even in sub-steps of {smallest:.3g} "
+                                      "of the change since its last step")
                 log.warning("stress Newton did not converge %s; sub-steps of %g of the change", what, share)
 
     def _equilibrate_at_room_temperature(self) -> None:

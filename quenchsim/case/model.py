@@ -93,8 +93,9 @@ class TimeControl:
     ``dt_max_s``. The stress solver (rate-independent: its increments depend on the changes of temperature and
     phases, not on time) takes one step over as many thermal steps as keep the change since its last step
     within ``mechanics_max_dT_K`` (K, at any quadrature point) and ``mechanics_max_dX`` (any phase fraction,
-    martensite included); 0 steps it with every thermal step (a thermal step beyond them is one stress step).
-    The thermal march is second order (BDF2), so the defaults (30 K, 0.02) keep the time-discretisation error of ring A condition 1 within the project's tolerances
+    martensite included); 0 steps it with every thermal step. A thermal step beyond them is split into as many stress
+    steps as keep each within them, along the step's own path (temperatures linear in time, phases as the kinetics
+    form them on it). The thermal march is second order (BDF2), so the defaults (30 K and 0.02 for both) keep the time-discretisation error of ring A condition 1 within the project's tolerances
     (validation/quench/convergence)."""
 
     dt_initial_s: float

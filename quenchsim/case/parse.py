@@ -30,7 +30,7 @@ DEFAULTS: dict[str, Any] = {
     "air": {"temperature_C": 25.0, "until_max_C": 40.0, "time_s": 20000.0, "htc_model": "natural",
             "emissivity": 0.8},
     "time": {"dt_initial_s": 0.02, "dt_min_s": 1e-3, "dt_max_s": 120.0, "max_dT_K": 30.0, "max_dX": 0.02,
-             "growth": 1.5, "mechanics_max_dT_K": 20.0, "mechanics_max_dX": 0.02},
+             "growth": 1.5, "mechanics_max_dT_K": 30.0, "mechanics_max_dX": 0.02},
     "output": {"frames": 40, "checkpoint_minutes": 5.0},
     "mechanics": {"enabled": True, "plasticity": True, "trip": True},
 }
