@@ -275,19 +275,19 @@ def test_a_boiling_curve_has_a_film_collapse_temperature_and_convection_has_none
 
 @pytest.mark.slow
 @pytest.mark.parametrize("case_file, condition, overrides, measured, required", [
-    ("crb_outer_ring.toml", "1", {}, "1.00 (0.69..1.44); 1.00 (0.54..1.49) before the film's pace since the first "
+    ("crb_outer_ring.toml", "1", {}, "1.00 (0.85..1.87) at the BDF2 limits; 1.00 (0.69..1.44); 1.00 (0.54..1.49) before the film's pace since the first "
                                      "wetting, 0.93 (0.80..2.32) before the forecast of the pearlite/bainite steps",
      0.95),
-    ("crb_outer_ring.toml", "1", {"time.max_dX": 0.01}, "1.00 (0.79..1.80); 1.00 (0.65..1.91) before", 0.95),
-    ("crb_outer_ring.toml", "2", {}, "1.00 (0.77..1.64); 1.00 (0.62..1.75) before", 0.95),
-    ("crb_outer_ring.toml", "3", {}, "1.00 (0.63..1.91); 0.65 (0.18..1.63) before", 0.95),
-    ("srb_outer_ring.toml", "4", {}, "1.00 (0.88..1.80); 0.84 (0.55..3.23) before", 0.95),
-    ("srb_outer_ring.toml", "5", {}, "1.00 (0.85..1.86); 0.85 (0.56..2.83) before", 0.95),
-    ("srb_outer_ring.toml", "6", {}, "0.91-0.96 (0.95..2.06) in three runs, 9-10 steps without an estimate while "
+    ("crb_outer_ring.toml", "1", {"time.max_dX": 0.01}, "1.00 (0.85..1.51) at the BDF2 limits; 1.00 (0.79..1.80); 1.00 (0.65..1.91) before", 0.95),
+    ("crb_outer_ring.toml", "2", {}, "0.96 (0.79..2.64) at the BDF2 limits; 1.00 (0.77..1.64); 1.00 (0.62..1.75) before", 0.95),
+    ("crb_outer_ring.toml", "3", {}, "1.00 (0.70..1.44) at the BDF2 limits; 1.00 (0.63..1.91); 0.65 (0.18..1.63) before", 0.95),
+    ("srb_outer_ring.toml", "4", {}, "1.00 (0.78..1.55) at the BDF2 limits; 1.00 (0.88..1.80); 0.84 (0.55..3.23) before", 0.95),
+    ("srb_outer_ring.toml", "5", {}, "0.98 (0.91..2.06) at the BDF2 limits; 1.00 (0.85..1.86); 0.85 (0.56..2.83) before", 0.95),
+    ("srb_outer_ring.toml", "6", {}, "0.95 (0.92..1.85) at the BDF2 limits; 0.91-0.96 (0.95..2.06) in three runs, 9-10 steps without an estimate while "
                                      "the pace after the first wetting is measured; 0.48 (0.27..2.16) before", 0.85),
-    ("peer_race_100Cr6.toml", None, {}, "1.00 (0.64..1.55); 1.00 (0.95..1.61) before", 0.95),
-    ("peer_race_100Cr6.toml", None, {"time.max_dX": 0.01}, "1.00 (0.55..1.49); 1.00 (0.75..1.52) before", 0.95),
-    ("solid_cylinder_still_oil.toml", None, {}, "1.00 (0.78..1.16); 1.00 (1.24..1.82) before", 0.95)],
+    ("peer_race_100Cr6.toml", None, {}, "0.07 (0.24..0.65) at the BDF2 limits, a known regression (the split stress steps, 3 per thermal step, are not counted); 1.00 (0.64..1.55); 1.00 (0.95..1.61) before", 0.95),
+    ("peer_race_100Cr6.toml", None, {"time.max_dX": 0.01}, "0.15 (0.26..0.70) at the BDF2 limits, the same regression; 1.00 (0.55..1.49); 1.00 (0.75..1.52) before", 0.95),
+    ("solid_cylinder_still_oil.toml", None, {}, "0.98 (0.73..1.23) at the BDF2 limits; 1.00 (0.78..1.16); 1.00 (1.24..1.82) before", 0.95)],
     ids=["A1", "A1_max_dX_0.01", "A2", "A3", "B4", "B5", "B6", "peer", "peer_max_dX_0.01", "cylinder"])
 def test_the_time_left_is_within_a_factor_2_for_most_of_every_shipped_quench(tmp_path, case_file, condition,
                                                                               overrides, measured, required):
