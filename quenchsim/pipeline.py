@@ -586,15 +586,19 @@ class QuenchRun:
         # a thermal step beyond the limits is split into as many stress steps as keep each within them, along the
         # step's own path: the temperatures linear in time, the phases as the kinetics form them on that path
         # (martensite, for one, is not linear in T: a straight line in (T, X) moved ring B's dimensions by ~0.04 mm)
+        # (the kinetics on the path advance from one sub-step's state to the next; their time counts as the stress
+        # steps' own, which they serve)
         parts = int(min(math.ceil(ratio), MAX_STRESS_STEPS_PER_THERMAL_STEP)) if math.isfinite(ratio) else 1
-        T0, state0 = self.thermal.T_qp, self.thermal.phase_state
+        T0, state = self.thermal.T_qp, self.thermal.phase_state
+        T = T0
         for k in range(1, parts + 1):
-            if k == parts:
-                T, X = T1, X1
-            else:
-                T = T0 + (k / parts) * (T1 - T0)
-                X = self.phase_model.fractions(self.phase_model.advance(state0, T0, T, (k / parts) * step.dt_s))
             with self.timer("mechanics_s"):
+                if k == parts:
+                    T, X = T1, X1
+                else:
+                    T_before, T = T, T0 + (k / parts) * (T1 - T0)
+                    state = self.phase_model.advance(state, T_before, T, step.dt_s / parts)
+                    X = self.phase_model.fractions(state)
                 converged = self._mechanics_step(T, X)
             if not converged:
                 if k == 1:
