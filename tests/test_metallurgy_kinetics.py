@@ -13,7 +13,8 @@ from scipy.integrate import quad
 
 from quenchsim.materials import load_material
 from quenchsim.metallurgy import (advance, diffusional_fraction_to_come, incubation_share, initial_state,
-                                  load_kinetics)
+                                  load_kinetics, martensite_limit_steps_to_come)
+from quenchsim.metallurgy.transform import MARTENSITE_FORECAST_OWN_RATE_WEIGHT
 from quenchsim.metallurgy.laws import li_sigmoid_integral
 
 R_CAL = 1.98720  # cal/(mol K)
@@ -114,6 +115,40 @@ def test_the_diffusional_forecast_follows_newton_cooling_with_the_run_kinetics()
     for i in range(T0.size):
         one = diffusional_fraction_to_come(initial_state((1,), kin), kin, T0[i:i + 1], rate[i:i + 1], ambient, every=1)
         assert fine[i] - 1e-3 <= one <= fine[i] + 0.05, (T0[i], rate[i], one, fine[i])
+
+
+def test_the_martensite_forecast_is_the_largest_increment_summed_along_newton_cooling():
+    """The stress steps a martensite limit needs, forecast on a profile of SUJ3 points 250-700 C cooling towards a 60 C
+    bath, then all together to 20 C, against the same paths marched in fine steps with :func:`advance` (the run's
+    Koistinen-Marburger update; no time for the diffusional reactions): each point's excess decays as
+    exp(-pace_i tau), pace_i = (own rate / section rate) ** weight, and the count is the sum over the steps of the
+    largest increment of any point, over 0.9 of the limit. Points alike form their martensite together (one point's
+    worth of steps); the profile needs more."""
+    kin = load_kinetics(load_material("SUJ3"), 845.0)
+    T0 = np.linspace(250.0, 700.0, 12)
+    rate = np.linspace(40.0, 5.0, 12)          # the surface cools fastest
+    bath, end, limit = 60.0, 20.0, 0.02
+    forecast = martensite_limit_steps_to_come(initial_state(T0.shape, kin), kin, T0, rate, bath, end, limit, every=1)
+    excess = T0 - bath
+    pace = np.clip(rate / excess / (rate.sum() / excess.sum()), 0.1, 10.0) ** MARTENSITE_FORECAST_OWN_RATE_WEIGHT
+    state, T, largest = initial_state(T0.shape, kin), T0, 0.0
+    path = [bath + excess * np.exp(-pace * tau) for tau in np.linspace(0.0, 40.0, 20001)[1:]]
+    path += [np.full_like(T0, T_C) for T_C in np.linspace(bath, end, 401)]
+    for T_next in path:
+        nxt = advance(state, kin, T, np.maximum(T_next, end), 0.0)
+        largest += float(np.max(nxt.fractions["martensite"] - state.fractions["martensite"]))
+        state, T = nxt, np.maximum(T_next, end)
+    assert forecast == pytest.approx(largest / (0.9 * limit), rel=0.02)   # measured 199.2 against 200.0
+    alike = martensite_limit_steps_to_come(initial_state((3,), kin), kin, np.full(3, 400.0), np.full(3, 10.0), bath,
+                                           end, limit, every=1)
+    one = 1.0 - np.exp(-kin.alpha_per_K * (kin.Ms_C - end))
+    assert alike == pytest.approx(one / (0.9 * limit), rel=1e-9)
+    assert forecast > 2.0 * alike
+    cooled = advance(initial_state((3,), kin), kin, 845.0, bath + 1.0, 0.0)   # nothing left to march before the bath
+    at_bath = martensite_limit_steps_to_come(cooled, kin, np.full(3, bath + 1.0), np.full(3, 0.1), bath, end, limit,
+                                             every=1)
+    rest = cooled.fractions["austenite"][0] * (1.0 - np.exp(-kin.alpha_per_K * (bath + 1.0 - end)))
+    assert at_bath == pytest.approx(rest / (0.9 * limit), rel=1e-9)
 
 
 def test_jmak_isothermal_step_independent():

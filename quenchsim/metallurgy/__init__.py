@@ -16,8 +16,9 @@ below Ms; see :mod:`quenchsim.metallurgy.transform` for the algorithm and
 from quenchsim.metallurgy.hardness import hardness_HV, hrc_to_hv, hv_to_hrc, phase_hardness_HV
 from quenchsim.metallurgy.kinetics import Kinetics, Reaction, load_kinetics
 from quenchsim.metallurgy.transform import (PhaseState, advance, diffusional_fraction_to_come, incubation_share,
+                                            martensite_limit_steps_to_come,
                                             initial_state)
 
 __all__ = ["Kinetics", "Reaction", "PhaseState", "load_kinetics", "initial_state", "advance", "incubation_share",
-           "diffusional_fraction_to_come", "hardness_HV",
+           "diffusional_fraction_to_come", "martensite_limit_steps_to_come", "hardness_HV",
            "phase_hardness_HV", "hv_to_hrc", "hrc_to_hv"]
