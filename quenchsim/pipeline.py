@@ -432,7 +432,12 @@ class QuenchRun:
                                     self.thermal.phase_state, self.kin, self.thermal.T_qp),
                                 float(np.mean(sum(fractions.get(r, 0.0) for r in self.kin.reactions)))
                                 if self.kin is not None else 0.0,
-                                None if self.kin is None else self._diffusional_to_come(T_qp_before, dt))
+                                None if self.kin is None else self._diffusional_to_come(T_qp_before, dt),
+                                stage_ambient_C=float(np.mean(htc.ambient_C)),
+                                martensite_fraction=float(np.mean(fractions.get("martensite", 0.0))),
+                                martensite_limit_steps=None if self.kin is None else self._martensite_limit_steps(
+                                    T_qp_before, dt, float(np.mean(htc.ambient_C))),
+                                stress_steps_done=counts.get("stress_steps", 0))
                 steps_left = estimate.steps_left(now)
                 stress_s, solve_s = self.timings.get("mechanics_s", 0.0), self.timings.get("thermal_metallurgy_s", 0.0)
                 self.bar.update(self.thermal.time_s, estimate.fraction(self.thermal.T), counts["steps"], steps_left,
@@ -450,6 +455,15 @@ class QuenchRun:
         state, T_qp = self.thermal.phase_state, self.thermal.T_qp
         return lambda: metallurgy.diffusional_fraction_to_come(state, self.kin, T_qp, (T_qp_before - T_qp) / dt_s,
                                                                self.case.air.temperature_C)
+
+    def _martensite_limit_steps(self, T_qp_before: np.ndarray, dt_s: float, bath_C: float) -> Callable[[], float]:
+        """The forecast of the stress steps the martensite still needs (``time.mechanics_max_dX`` on it) for the
+        progress estimate, from the section's cooling rate over the step just taken towards the stage's ambient
+        ``bath_C``, then the air's (asked only when needed)."""
+        state, T_qp = self.thermal.phase_state, self.thermal.T_qp
+        return lambda: metallurgy.martensite_limit_steps_to_come(state, self.kin, T_qp, (T_qp_before - T_qp) / dt_s,
+                                                                 bath_C, self.case.air.temperature_C,
+                                                                 self.case.time.mechanics_max_dX)
 
     def _newton_rate_per_s(self, stage: Stage) -> float:
         """The rate ``h A / C`` at which the part would cool in ``stage`` as one lump (Newton's law: the

@@ -27,6 +27,10 @@ STEPS = 1000
 """The bar counts thousandths of the run's work."""
 FORECAST_EVERY_STEPS = 16
 """Steps between two forecasts of the pearlite + bainite still to form (each costs about a step's metallurgy)."""
+MARTENSITE_FORECAST_EVERY_STEPS = 8
+"""Steps between two forecasts of the stress steps the martensite still needs (:meth:`CoolingProgress._martensite_steps`;
+each costs a few milliseconds): where a front crosses the section, 16 steps are some 50 stress steps, over which the
+forecast less what was taken since went stale."""
 PACE_MIN_STEPS = 8
 """Steps of the phase-fraction limit before their pace (pearlite + bainite formed per step) is taken as known."""
 FILM_PACE_SHARE = 0.1
@@ -68,7 +72,12 @@ class StepState:
     run for a diffusional reaction (:func:`quenchsim.metallurgy.incubation_share`; 1 once one has started);
     ``diffusional_fraction``: the mean fraction of pearlite + bainite formed so far; ``diffusional_to_come``: asked
     only when the estimate needs it, the mean fraction of pearlite + bainite still to form
-    (:func:`quenchsim.metallurgy.diffusional_fraction_to_come` at each point's cooling rate now; None: not known)."""
+    (:func:`quenchsim.metallurgy.diffusional_fraction_to_come` at each point's cooling rate now; None: not known);
+    ``stage_ambient_C``: the current stage's ambient (the bath; NaN: not known); ``martensite_fraction``: the mean
+    martensite formed so far; ``martensite_limit_steps``: asked only when the estimate needs it, the steps a limit of
+    ``time.mechanics_max_dX`` on the martensite still needs
+    (:func:`quenchsim.metallurgy.martensite_limit_steps_to_come`; None: no martensite to form);
+    ``stress_steps_done``: the stress steps taken so far."""
 
     steps_done: int
     time_s: float
@@ -85,6 +94,10 @@ class StepState:
     incubation_share: float = 0.0
     diffusional_fraction: float = 0.0
     diffusional_to_come: Callable[[], float] | None = None
+    stage_ambient_C: float = math.nan
+    martensite_fraction: float = 0.0
+    martensite_limit_steps: Callable[[], float] | None = None
+    stress_steps_done: int = 0
 
 
 class CoolingProgress:
@@ -100,7 +113,8 @@ class CoolingProgress:
     * the fewest steps that cover the simulated time left, growing from the next step by ``time.growth`` up to
       ``time.dt_max_s`` (:meth:`_steps_to_cover`), the time left being the stages' clocks or, in a stage that ends
       on a temperature, when the mean's exponential decay towards the ambient reaches the end temperature
-      (Newton's cooling: its rate over the last step in that stage, before it the stage's ``h A / C``). Since no
+      (Newton's cooling: its rate over the last step in that stage, before it the stage's ``h A / C``, from the mean
+      the current stage will leave, :meth:`_excess_at_stage_end`). Since no
       step is longer or grows faster, this is also a floor on every other estimate, so a long air stage of capped
       steps is counted while the quench still runs, and so are the growing steps of a short air stage (the small
       ring of the tests: its last ~10 steps, counted as 3-5 by the scaling before this floor).
@@ -125,15 +139,16 @@ class CoolingProgress:
       the austenite left turns to martensite instead (2.3-2.6x high on ring A).
 
     The estimate shown never rises (:class:`TimeLeft`, which also prices the steps), so where the model must guess
-    it errs high, never low. Measured on every shipped quench case (the share of the steps between 10 % and 90 % of
-    the run whose estimate is within a factor 2 of the real time left, CPU clock, and the range of estimate / real;
-    docs/experiments/time_left_diffusional_forecast.md keeps the models before and how each was measured): ring A
-    conditions 1, 2, 3 100 % (0.69..1.44, 0.77..1.64, 0.63..1.91), condition 1 with ``time.max_dX = 0.01`` 100 %
-    (0.79..1.80); ring B conditions 4, 5 100 % (0.88..1.80, 0.85..1.86), 6 91-96 % in three runs (0.95..2.06: 9-10
-    steps without an estimate while the pace after the first wetting is measured, and the film's end estimated
-    late); the peer race 100 % (0.64..1.55), with ``time.max_dX = 0.01`` 100 % (0.55..1.49); the solid cylinder in
-    still oil 100 % (0.78..1.16). Before this model the agitated baths missed: ring A condition 3 65 % (0.18..1.63),
-    ring B 84 %, 85 %, 48 % (0.27..3.23)."""
+    it errs high, never low. Measured on every shipped quench case at the BDF2 step limits (the share of the steps
+    between 10 % and 90 % of the run whose estimate is within a factor 2 of the real time left, CPU clock, and the
+    range of estimate / real; session 14, docs/experiments/martensite_front_time_left.md keeps the models before and
+    how each was measured): ring A conditions 1, 2, 3 100 % (0.94..1.86, 0.79..1.76, 0.70..1.65), condition 1 with
+    ``time.max_dX = 0.01`` 100 % (0.81..1.67); ring B conditions 4, 5 100 % (0.68..1.62, 0.89..1.81), 6 95 %
+    (0.93..1.64: 9-10 steps without an estimate while the pace after the first wetting is measured); the peer race in
+    water 100 % (0.80..1.34), with ``time.max_dX = 0.01`` 100 % (0.68..1.15), where its martensite front splits 214
+    thermal steps into 642 stress steps (7 % and 15 % before the front's steps were forecast); the solid cylinder in
+    still oil 98 % (0.53..0.96). Before the film's pace and the pearlite/bainite forecast the agitated baths missed:
+    ring A condition 3 65 % (0.18..1.63), ring B 84 %, 85 %, 48 % (0.27..3.23)."""
 
     def __init__(self, T_start_C: float, T_end_C: float, T_sink_C: float, dt_max_s: float, max_dT_K: float,
                  max_dX: float, growth: float, mechanics_max_dT_K: float = 0.0, mechanics_max_dX: float = 0.0) -> None:
@@ -150,6 +165,7 @@ class CoolingProgress:
         self._phase_change_limited = False
         self._phase_change_start: tuple[int, float] | None = None   # (steps, diffusional fraction) when it first held
         self._forecast: tuple[int, float, float] | None = None      # (steps, diffusional fraction, to come) when asked
+        self._martensite: tuple[int, int, float, float] | None = None  # (steps, stress steps, martensite, forecast)
 
     def fraction(self, T_nodes_C: np.ndarray) -> float:
         return float(min(max((self.T_start_C - float(np.mean(T_nodes_C))) / self.span_K, 0.0), 1.0))
@@ -165,8 +181,9 @@ class CoolingProgress:
             previous = last[1] - self.T_sink_C
             if previous > excess > self.end_excess_K > 0.0:
                 left_s = min(left_s, self._newton_time_s(excess, math.log(previous / excess) / (now.time_s - last[0])))
-        for clock_s, rate_per_s in now.later_stages:      # from the mean as it is now: the part is no hotter then
-            left_s += clock_s if rate_per_s is None else min(clock_s, self._newton_time_s(excess, rate_per_s))
+        later_excess = self._excess_at_stage_end(now, last, mean) if now.later_stages else excess
+        for clock_s, rate_per_s in now.later_stages:
+            left_s += clock_s if rate_per_s is None else min(clock_s, self._newton_time_s(later_excess, rate_per_s))
         floor = self._steps_to_cover(max(left_s, 0.0), now.dt_next_s)
         if now.dt_next_s >= 0.999 * self.dt_max_s:
             return floor
@@ -184,13 +201,30 @@ class CoolingProgress:
             return max(counted, floor)      # the mean's cooling under a film foretells nothing after it
         return max(min(scaled, counted), floor)
 
+    def _excess_at_stage_end(self, now: StepState, last: tuple[float, float] | None, mean_C: float) -> float:
+        """The mean's excess over the end's ambient (``T_sink_C``) when the current stage's clock runs out, for the
+        stages after it: the mean decaying towards the stage's own ambient (``now.stage_ambient_C``, the bath) at its
+        Newton rate over the last step; the mean as it is now where that rate is not known or not positive (latent
+        heat holding the part), so that the estimate errs high. From the mean as it is now, ring A condition 1's
+        air stage, which starts from the oil's 60 C after 900 s in the bath, was counted from 150-400 C: 2.5x its
+        length while the quench ran (a floor of ~150 steps where ~75 were left)."""
+        ambient = now.stage_ambient_C
+        if (not math.isfinite(ambient) or now.ends_on_temperature or last is None or not now.time_s > last[0]
+                or not last[1] - ambient > mean_C - ambient > 0.0):
+            return mean_C - self.T_sink_C
+        rate = math.log((last[1] - ambient) / (mean_C - ambient)) / (now.time_s - last[0])
+        end_C = ambient + (mean_C - ambient) * math.exp(-rate * max(now.stage_clock_left_s, 0.0))
+        return min(end_C, mean_C) - self.T_sink_C
+
     def stress_steps_left(self, now: StepState, steps_left: float) -> float:
         """The stress steps among the ``steps_left`` thermal steps (:meth:`steps_left` of the same ``now``): the
         stress solver steps when the change since its last step exceeds ``mechanics_max_dT_K`` or
         ``mechanics_max_dX`` (the pipeline's multirate stepping), so it takes the film's steps, then the larger of
         the temperature drops still to come over 90 % of its temperature limit and the austenite left over 90 % of
         its phase-fraction limit (martensite forms as the part cools, so one stress step serves both limits), then
-        the growth steps -- never more than the thermal steps (limits of 0: all of them)."""
+        the growth steps -- never more than the thermal steps (limits of 0: all of them) -- or, where more, the
+        steps the martensite forming faster than the limit splits the thermal steps into (:meth:`_martensite_steps`)
+        and the growth steps."""
         if self.mechanics_max_dT_K <= 0.0 or self.mechanics_max_dX <= 0.0:
             return steps_left
         film = self._film_steps(now)
@@ -198,7 +232,32 @@ class CoolingProgress:
             return steps_left
         cooling = max(self._drop_steps(now, self.mechanics_max_dT_K),
                       now.austenite_fraction / (0.9 * self.mechanics_max_dX))
-        return min(steps_left, film + cooling + self._growth_steps(now))
+        growth = self._growth_steps(now)
+        film *= min(self.max_dT_K / self.mechanics_max_dT_K, 1.0)     # the film's steps are at the temperature limit
+        return max(min(steps_left, film + cooling + growth), self._martensite_steps(now) + growth)
+
+    def _martensite_steps(self, now: StepState) -> float:
+        """The stress steps the martensite still needs: a thermal step that forms more than ``mechanics_max_dX`` of
+        martensite anywhere is split into as many stress steps, so where a martensite front crosses the section they
+        outnumber the thermal steps (the water-quenched peer race: 642 for 214). The forecast
+        (``now.martensite_limit_steps``, asked every :data:`MARTENSITE_FORECAST_EVERY_STEPS` steps, less the steps taken
+        since: the stress steps taken or the mean martensite formed over 0.9 of the limit, whichever is more) counts
+        all the austenite left; the share of it that pearlite and bainite will take first (:meth:`_to_come`) forms no
+        martensite, so it is scaled by the rest."""
+        if now.martensite_limit_steps is None or now.austenite_fraction <= 0.0:
+            return 0.0
+        if self._martensite is None or now.steps_done - self._martensite[0] >= MARTENSITE_FORECAST_EVERY_STEPS:
+            steps = now.martensite_limit_steps()     # NaN while the section is not cooling: the last one holds
+            if not math.isnan(steps):
+                self._martensite = (now.steps_done, now.stress_steps_done, now.martensite_fraction, steps)
+            elif self._martensite is None:
+                return 0.0
+            else:
+                self._martensite = (now.steps_done, *self._martensite[1:])
+        _, stress_then, formed_then, steps = self._martensite
+        taken = max(now.stress_steps_done - stress_then,
+                    (now.martensite_fraction - formed_then) / (0.9 * self.mechanics_max_dX))
+        return max(steps - taken, 0.0) * max(now.austenite_fraction - self._to_come(now), 0.0) / now.austenite_fraction
 
     def _film_steps(self, now: StepState) -> float:
         """The steps until the vapour film collapses everywhere (0 with no film): the film's time left (the surface
