@@ -364,6 +364,7 @@ class QuenchRun:
             self.bar.phase(f"{stage.name}: boundary HTC")
             with self.timer("bath_htc_s"):
                 htc = stage_htc(case, stage.name, self.points)
+            bath_C = float(np.mean(htc.ambient_C))
             if position["stage_end_s"] is None:  # the stage starts (not resumed within it)
                 position["stage_end_s"] = self.thermal.time_s + stage.duration_s
                 self.thermal.restart()
@@ -433,10 +434,10 @@ class QuenchRun:
                                 float(np.mean(sum(fractions.get(r, 0.0) for r in self.kin.reactions)))
                                 if self.kin is not None else 0.0,
                                 None if self.kin is None else self._diffusional_to_come(T_qp_before, dt),
-                                stage_ambient_C=float(np.mean(htc.ambient_C)),
+                                stage_ambient_C=bath_C,
                                 martensite_fraction=float(np.mean(fractions.get("martensite", 0.0))),
                                 martensite_limit_steps=None if self.kin is None else self._martensite_limit_steps(
-                                    T_qp_before, dt, float(np.mean(htc.ambient_C))),
+                                    T_qp_before, dt, bath_C),
                                 stress_steps_done=counts.get("stress_steps", 0))
                 steps_left = estimate.steps_left(now)
                 stress_s, solve_s = self.timings.get("mechanics_s", 0.0), self.timings.get("thermal_metallurgy_s", 0.0)

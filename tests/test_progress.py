@@ -235,6 +235,27 @@ def test_while_a_film_holds_the_steps_left_count_the_film_time_at_the_pace_since
     assert len(history) == len(film) - 1 and np.isnan(history[:, 2:]).all()
 
 
+def test_the_film_counts_a_stress_step_per_stress_temperature_limit_of_thermal_steps():
+    """Closed form, the film of the test above: its 992 thermal steps are at the thermal temperature limit (20 K), so a
+    stress limit of 60 K takes a stress step every third of them; the surface's and the hottest node's drops count at
+    the stress limit, the growth steps as they are."""
+    counts = {}
+    for mechanics_max_dT_K in (20.0, 60.0):
+        progress = CoolingProgress(850.0, 40.0, 20.0, dt_max_s=8.0, max_dT_K=20.0, max_dX=0.002, growth=2.0,
+                                   mechanics_max_dT_K=mechanics_max_dT_K, mechanics_max_dX=0.02)
+        film = [(k, 0.5 * k, 0.0) for k in range(1, 17)] + [(17 + k, 8.5 + 0.5 * k, 0.0) for k in range(3)]
+        film += [(20 + k, 10.0 + 0.05 * k, 0.1) for k in range(PACE_MIN_STEPS + 1)]
+        for steps, time_s, wetted in film:
+            now = StepState(steps_done=steps, time_s=time_s, T_nodes_C=np.array([700.0, 845.0]), dt_next_s=0.05,
+                            stage_clock_left_s=100.0, ends_on_temperature=False, surface_mean_C=800.0,
+                            film_excess_K=300.0 - 5.0 * time_s, film_wetted_share=wetted)
+            progress.steps_left(now)
+        counts[mechanics_max_dT_K] = progress.stress_steps_left(now, 1e5)
+    growth = math.log2(8.0 / 0.05)
+    assert counts[20.0] == pytest.approx(49.6 * 20.0 + (760.0 + 805.0) / 18.0 + growth)
+    assert counts[60.0] == pytest.approx(49.6 * 20.0 / 3.0 + (760.0 + 805.0) / 54.0 + growth)
+
+
 def test_a_film_whose_farthest_point_has_not_cooled_gives_no_estimate():
     """Regression (a run resumed under a film, CI at c5cba6c): the film's history starts again at the resume, and
     while the farthest point has not cooled over the last tenth of it the film's end is not known. That was an
