@@ -123,20 +123,43 @@ def test_step_linear_solver_matches_a_direct_solve_in_every_mode():
     check(fe.system(np.full(shape, 3.9e6 / 120.0), np.full(shape, 30.0), np.full(facet_shape, -4e4)))
 
 
-def test_an_indefinite_step_matrix_is_refused_by_the_factorisation_without_c_level_noise(capfd):
-    """CHOLMOD prints a warning with C stdio before cholespy raises; the refusal is an expected branch (LU takes
-    over), so the factorisation raises LinAlgError and nothing reaches the terminal, now or at the next flush."""
+def test_an_indefinite_step_matrix_is_refused_by_the_factorisation():
+    """LDL' without pivoting factorises an indefinite matrix without complaint; the definiteness check makes the
+    factorisation refuse it (the thermal solver's LU then takes over), and a definite one is solved exactly."""
     import numpy as np
     import scipy.sparse as sp
 
     from quenchsim.fem.linalg import SparseCholesky
 
     indefinite = sp.csr_matrix(np.array([[1.0, 2.0], [2.0, 1.0]]))
-    with pytest.raises(np.linalg.LinAlgError):
+    with pytest.raises(np.linalg.LinAlgError, match="not positive definite"):
         SparseCholesky(indefinite)
-    import ctypes
-    ctypes.CDLL(None).fflush(None)    # what C stdio still buffers would otherwise appear only at exit
-    out, err = capfd.readouterr()
-    assert "CHOLMOD" not in out + err
+    SparseCholesky(indefinite, check_definite=False)   # the check is what refuses it
     spd = SparseCholesky(sp.csr_matrix(np.array([[2.0, 1.0], [1.0, 2.0]])))
     assert np.allclose(spd.solve(np.array([3.0, 3.0])), [1.0, 1.0])
+    with pytest.raises(np.linalg.LinAlgError):
+        spd.refactorize(indefinite)        # a numeric refactorisation is checked too
+
+
+def test_a_numeric_refactorisation_is_the_fresh_factor_of_the_new_matrix():
+    """:meth:`SparseCholesky.refactorize` keeps the ordering of the first matrix when the pattern is the same: the
+    factor is then bit for bit the one a fresh factorisation gives (a resumed run refactorises from scratch); a
+    matrix of another pattern is factorised afresh."""
+    import numpy as np
+    import scipy.sparse as sp
+
+    from quenchsim.fem.linalg import SparseCholesky
+
+    rng = np.random.default_rng(3)
+    n = 60
+    lap = sp.diags([-np.ones(n - 1), 2.0 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1], format="csr")
+    first = lap + sp.diags(rng.uniform(0.1, 1.0, n), format="csr")
+    second = lap + sp.diags(rng.uniform(1.0, 5.0, n), format="csr")
+    b = rng.standard_normal(n)
+    factor = SparseCholesky(first)
+    factor.refactorize(second)
+    assert np.array_equal(factor.solve(b), SparseCholesky(second).solve(b))
+    assert np.linalg.norm(second @ factor.solve(b) - b) < 1e-12 * np.linalg.norm(b)
+    other = sp.csr_matrix(np.diag(np.arange(1.0, n + 1.0)))      # another pattern
+    factor.refactorize(other)
+    assert np.allclose(factor.solve(b), b / np.arange(1.0, n + 1.0), rtol=1e-14)

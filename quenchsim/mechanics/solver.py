@@ -61,25 +61,24 @@ class StepInfo:
 
 
 class _LinearSolver:
-    """Solves K x = b to a relative residual ``rtol``: conjugate gradients preconditioned by the Cholesky
-    factorisation of an earlier tangent (the tangent changes slowly between Newton iterations and steps).
+    """Solves K x = b to a relative residual ``rtol``: conjugate gradients preconditioned by the LDL' factor of an
+    earlier tangent (the tangent changes slowly between Newton iterations and steps).
 
-    When to refactorise is a rent-or-buy choice: a factorisation costs about as much as ``budget`` preconditioned
-    CG iterations (measured on ring A: 34 ms against 0.37 ms at mesh factor 1, 9882 DOFs, a ratio of 92; 168 ms
-    against 1.5 ms at 0.5, 33,710 DOFs, 113), so the next solve refactorises once the iterations since the last
-    factorisation exceed it, and a solve that needs more than ``max_cg`` iterations refactorises at once. The rule
-    it replaced (refactorise after any solve of more than 8 iterations) refactorised 117 times on ring A at mesh
-    factor 0.5, where a tenth of the solves need 9 iterations or more (mean 5.1, against 4.4 at mesh factor 1;
-    docs/experiments/stress_preconditioner.md); this one spends 9 % less time in the stress solver there and the
-    same at mesh factor 1. K is symmetric positive definite (associative J2 flow, H >= 0,
-    rigid modes removed), so CG applies."""
+    When to refactorise is a rent-or-buy choice: a refactorisation costs about as much as ``budget`` preconditioned
+    CG iterations, so the next solve refactorises once the iterations since the last factorisation exceed it, and a
+    solve that needs more than ``max_cg`` iterations refactorises at once. The tangents keep their pattern, so a
+    refactorisation is numeric only (:meth:`SparseCholesky.refactorize`): measured on ring A, 8.9 ms against
+    0.64 ms per CG iteration at mesh factor 1 (9882 DOFs), 63 ms against 5.3 ms at 0.5 (33,710 DOFs), a ratio of
+    12-14 at both sizes. (With CHOLMOD, which re-ordered at every factorisation, it was 92-113 and the budget 100;
+    docs/experiments/stress_preconditioner.md.) K is symmetric positive definite (associative J2 flow, H >= 0,
+    rigid modes removed), so CG applies and the factor skips the definiteness check."""
 
-    def __init__(self, max_cg: int = 60, budget: int = 100) -> None:
+    def __init__(self, max_cg: int = 60, budget: int = 12) -> None:
         self.max_cg = max_cg
         self.budget = budget
         self._stale = True
         self._since_factorisation = 0
-        self._factor = None
+        self._factor: SparseCholesky | None = None
         self._factored_matrix: sp.csr_matrix | None = None
         self.factorizations = 0
         self.cg_iterations = 0
@@ -93,7 +92,8 @@ class _LinearSolver:
         self._stale = bool(state["stale"])
         self._since_factorisation = int(state["since_factorisation"])
         self._factored_matrix = state.get("factored_matrix")
-        self._factor = None if self._factored_matrix is None else SparseCholesky(self._factored_matrix)
+        self._factor = (None if self._factored_matrix is None
+                        else SparseCholesky(self._factored_matrix, check_definite=False))
 
     def solve(self, K: sp.csr_matrix, b: np.ndarray, rtol: float) -> np.ndarray:
         if not self._stale:
@@ -104,7 +104,11 @@ class _LinearSolver:
             self._stale = self._since_factorisation > self.budget  # the next solve refactorises
             if done:
                 return x
-        self._factor, self._factored_matrix = SparseCholesky(K), K
+        if self._factor is None:
+            self._factor = SparseCholesky(K, check_definite=False)
+        else:
+            self._factor.refactorize(K)
+        self._factored_matrix = K
         self._stale = False
         self._since_factorisation = 0
         self.factorizations += 1
