@@ -64,16 +64,19 @@ class _LinearSolver:
     """Solves K x = b to a relative residual ``rtol``: conjugate gradients preconditioned by the LDL' factor of an
     earlier tangent (the tangent changes slowly between Newton iterations and steps).
 
-    When to refactorise is a rent-or-buy choice: a refactorisation costs about as much as ``budget`` preconditioned
-    CG iterations, so the next solve refactorises once the iterations since the last factorisation exceed it, and a
-    solve that needs more than ``max_cg`` iterations refactorises at once. The tangents keep their pattern, so a
-    refactorisation is numeric only (:meth:`SparseCholesky.refactorize`): measured on ring A, 8.9 ms against
-    0.64 ms per CG iteration at mesh factor 1 (9882 DOFs), 63 ms against 5.3 ms at 0.5 (33,710 DOFs), a ratio of
-    12-14 at both sizes. (With CHOLMOD, which re-ordered at every factorisation, it was 92-113 and the budget 100;
-    docs/experiments/stress_preconditioner.md.) K is symmetric positive definite (associative J2 flow, H >= 0,
-    rigid modes removed), so CG applies and the factor skips the definiteness check."""
+    When to refactorise is a rent-or-buy choice: the next solve refactorises once the CG iterations since the last
+    factorisation exceed ``budget``, and a solve that needs more than ``max_cg`` iterations refactorises at once.
+    The tangents keep their pattern, so a refactorisation is numeric only (:meth:`SparseCholesky.refactorize`):
+    measured on ring A, it costs as much as 12-14 preconditioned CG iterations at mesh factors 1 and 0.5 (7.5-8 ms
+    against ~0.65 ms at 9882 DOFs, 63 ms against ~5.3 ms at 33,710). The budget is twice that: counted on ring A
+    condition 1, budgets 12 / 24 / 48 take 170 / 112 / 69 refactorisations and 2730 / 3107 / 3629 factor solves at
+    mesh factor 1 (~3.10 / 2.89 / 2.90 s at those costs), and budgets 6 / 12 / 24 take 287 / 220 / 139 and
+    3196 / 3578 / 4052 at 0.5 (~35.0 / 32.9 / 30.2 s): the iterations per solve grow slowly as the factor ages, so
+    buying later pays. (With CHOLMOD, which re-ordered at every factorisation, a factorisation was worth 92-113
+    iterations and the budget was 100; docs/experiments/stress_preconditioner.md.) K is symmetric positive definite
+    (associative J2 flow, H >= 0, rigid modes removed), so CG applies and the factor skips the definiteness check."""
 
-    def __init__(self, max_cg: int = 60, budget: int = 12) -> None:
+    def __init__(self, max_cg: int = 60, budget: int = 24) -> None:
         self.max_cg = max_cg
         self.budget = budget
         self._stale = True
