@@ -126,3 +126,17 @@ def test_non_transforming_cylinder_run_reports_no_hardness(tmp_path):
     assert 800.0 < at_transfer_end < 850.0                          # 5 s of air: some ten kelvin
     air_rate, oil_rate = (850.0 - at_transfer_end) / 5.0, (at_transfer_end - float(np.interp(10.0, t, surface))) / 5.0
     assert oil_rate > 5.0 * air_rate
+
+
+def test_the_run_table_of_a_solid_steel_bar_shows_its_missing_bore_depth_as_a_dash(tmp_path):
+    """A solid section's "bore" HRC58 depth is None in summary.json (its traverse starts on the axis); the
+    terminal table printed it with a float format and `quenchsim run` of an SUJ2 round bar ended in a TypeError
+    after every result was written."""
+    from quenchsim.commands.run import summary_table
+
+    summary = {"case": "SUJ2_round_bar_oil", "condition": "", "status": "ok",
+               "solver": {"steps": 241, "wall_time_s": 12.0}, "end_state": {"at_room_temperature": True},
+               "probes": {"centre": {"t_to_500C_s": None, "t_to_300C_s": 40.0, "t8_5_s": None}},
+               "hardness": {"depth_mm": {"HRC58_bore_mid": None, "HRC58_od_mid": 9.999}, "core_HRC": 64.05}}
+    table = summary_table(summary, tmp_path)
+    assert "HRC58 depth at mid-width (mm): bore -, od 10.00; core 64.0 HRC" in table

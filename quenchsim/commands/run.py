@@ -94,7 +94,9 @@ def summary_table(s: dict, out: Path) -> str:
         rows.append(f"{name:<10}{fmt(p['t_to_500C_s'], 16)}{fmt(p['t_to_300C_s'], 16)}{fmt(p['t8_5_s'], 10)}")
     if "hardness" in s:
         h = s["hardness"]
-        rows.append("HRC58 depth at mid-width (mm): " + ", ".join(f"{k.split('_')[1]} {v:.2f}" for k, v in h["depth_mm"].items())
+        # a solid section's "bore" depth is None: its traverse starts on the axis, not on a surface
+        rows.append("HRC58 depth at mid-width (mm): "
+                    + ", ".join(f"{k.split('_')[1]} {'-' if v is None else f'{v:.2f}'}" for k, v in h["depth_mm"].items())
                     + f"; core {h['core_HRC']:.1f} HRC")
     rows += [f"note: {note}" for note in s.get("notes", [])]
     if "dimensions_mm" in s:
