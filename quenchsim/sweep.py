@@ -59,7 +59,7 @@ from quenchsim.results import RunWriter, files, read_summary
 RESULTS_CSV = "results.csv"
 SWEEP_JSON = "sweep.json"
 CASE_JSON = "sweep_case.json"
-KEY_OUTPUTS = ("probes", "hardness", "phases_final", "dimensions_mm", "residual_stress_MPa", "solver")
+KEY_OUTPUTS = ("probes", "hardness", "phases_final", "dimensions_mm", "shape_mm", "residual_stress_MPa", "solver")
 """Top-level tables of summary.json whose numeric leaves become result columns."""
 SOLVER_KEYS = ("wall_time_s", "steps", "dofs")
 log = logging.getLogger("quenchsim")
@@ -231,6 +231,8 @@ def flatten_summary(summary: dict[str, Any]) -> dict[str, Any]:
             if top == "phases_final" and not key.endswith(".mean"):
                 continue
             if top == "solver" and key.split(".")[-1] not in SOLVER_KEYS:
+                continue
+            if top == "shape_mm" and key.split(".")[1] not in ("after", "change"):
                 continue
             if value is None or isinstance(value, bool) or isinstance(value, (int, float)):
                 out[key] = value
