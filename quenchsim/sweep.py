@@ -461,17 +461,21 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, scheduler: str | None = None
 
 def run_on_dask(args: dict[str, tuple[Any, ...]], scheduler: str | None, workers: int,
                 record: Callable[[str, dict[str, Any]], None]) -> bool:
-    """Submit every case (``name -> run_point arguments``, one base case table shared by all) and record the
-    results as they arrive; True when interrupted by Ctrl-C. Also the calibration's design runner."""
+    """Submit every case (``name -> run_point arguments``) and record the results as they arrive; True when
+    interrupted by Ctrl-C. Also the calibration's and the design study's runner."""
     from dask.distributed import as_completed
 
     client, cluster = _client(scheduler, workers)
     futures = {}
     try:
-        # the base case table is the same for every case: ship it to the workers once
-        raw = client.scatter(next(iter(args.values()))[0], broadcast=True)
-        for name, (_, *rest) in args.items():
-            futures[client.submit(run_point, raw, *rest, key=f"quenchsim-{name}-{time.time_ns()}", pure=False)] = name
+        # a base case table shared by several cases (a sweep's) is shipped to the workers once
+        shipped: dict[str, Any] = {}
+        for name, (raw_case, *rest) in args.items():
+            text = json.dumps(raw_case, sort_keys=True, default=str)
+            if text not in shipped:
+                shipped[text] = client.scatter(raw_case, broadcast=True)
+            futures[client.submit(run_point, shipped[text], *rest, key=f"quenchsim-{name}-{time.time_ns()}",
+                                  pure=False)] = name
         for future in as_completed(futures):
             try:
                 result = future.result()
