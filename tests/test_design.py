@@ -37,8 +37,8 @@ def branin_points(points):
 
 BRANIN = Problem("branin", (Variable("u", 0.0, 1.0), Variable("v", 0.0, 1.0)), (Objective("f", "min"),),
                  (Constraint("g", ">=", 0.2),), startup=10, seed=0)
-"""Branin on the unit square with the constraint u v >= 0.2 of Forrester, Sobester & Keane (Engineering Design via
-Surrogate Modelling, 2008, sec. 5): it cuts off all three unconstrained minima."""
+"""Branin on the unit square with the constraint u v >= 0.2, which cuts off all three unconstrained minima (at
+(0.124, 0.818), (0.543, 0.152), (0.962, 0.165)); its constrained optimum is found independently below."""
 
 
 def test_branin_constraint_optimum_is_known():
@@ -140,7 +140,7 @@ def small_ring(path: Path, mechanics: bool = False) -> Path:
 STUDY = {"study": {"case": "ring.toml", "trials": 2, "startup": 2, "seed": 3},
          "variables": {"quench": {"time_s": [10.0, 30.0]}},
          "objectives": {"hardness.core_HRC": "max"},
-         "constraints": ["hardness.core_HRC >= 67"]}
+         "constraints": ["hardness.core_HRC >= 67"], "confirm": {"uncertainty": 2}}
 
 
 def _with(**tables) -> dict:
@@ -162,6 +162,7 @@ def _with(**tables) -> dict:
      "no run can satisfy both"),
     ({"constraints": ["hardness.core_HRC => 60"]}, "constraints", "QUANTITY >= NUMBER"),
     ({"fidelity": {"mesh": 2.0}}, "fidelity.tolerance", "needs the tolerance"),
+    ({"study": {"case": "ring.toml", "map": ["quench.time_s", "x"]}}, "study.map", "two of the numeric variables"),
 ])
 def test_bad_study_files_are_one_line_errors(tmp_path, tables, field, words):
     small_ring(tmp_path / "ring.toml")
@@ -170,10 +171,12 @@ def test_bad_study_files_are_one_line_errors(tmp_path, tables, field, words):
     assert err.value.field == field and words in str(err.value) and "\n" not in str(err.value)
 
 
+@pytest.mark.slow   # seven small-ring runs: ~40 s on an idle machine, minutes under load
 def test_case_study_that_no_run_satisfies_says_so_and_resumes(tmp_path):
     """A thermal-only study whose constraint (core HRC >= 67: within the HRC scale, so not refused) no run meets:
-    exit 1, a plain line, the closest run confirmed at the full chain, every trial in trials.csv; a second call with
-    one trial more runs only that trial (the finished runs are read from the cache)."""
+    exit 1, a plain line, the closest run confirmed at the full chain with the priors' bands (two draws), every trial
+    in trials.csv; a second call with one trial more runs only that trial (the finished runs are read from the
+    cache)."""
     small_ring(tmp_path / "ring.toml")
     (tmp_path / "study.toml").write_text(tomli_w.dumps(STUDY))
     cmd = [sys.executable, "-m", "quenchsim.cli", "optimise", str(tmp_path / "study.toml"), "--out", str(tmp_path / "o"),
@@ -186,6 +189,8 @@ def test_case_study_that_no_run_satisfies_says_so_and_resumes(tmp_path):
     result = json.loads((tmp_path / "o" / "optimise.json").read_text())
     assert result["constraints_met"] is False and result["closest"][0]["trial"] in (0, 1)
     assert result["confirmations"][0]["role"] == "closest"
+    bands = result["confirmations"][0]["uncertainty"]        # two runs with the inputs drawn from the priors
+    assert bands["runs"] == 2 and bands["quantities"]["hardness.core_HRC"]["p5"] <= bands["quantities"]["hardness.core_HRC"]["p95"]
     assert "### No run met the constraints" in (tmp_path / "o" / "optimise.md").read_text()
     runs = {p.name: (p / "summary.json").stat().st_mtime_ns for p in (tmp_path / "o" / "runs").iterdir()}
     assert main(["optimise", str(tmp_path / "study.toml"), "--out", str(tmp_path / "o"), "--workers", "0", "--quiet",

@@ -96,9 +96,8 @@ def _plots(outcome: Any) -> list[Path]:
         labels = [o.label() if o.goal != "target" else f"|{o.quantity} - {o.target:g}|" for o in spec.objectives]
         written.append(plots.pareto_plot(xy, feasible, front, xy[ok.index(best)] if best else None, labels,
                                          f"{spec.name}: trials and Pareto front (cheap fidelity)", out / "pareto.png"))
-    numeric = [v for v in spec.variables if v.numeric]
-    if len(numeric) >= 2:
-        a, b = numeric[:2]
+    if spec.map_variables:
+        a, b = (next(v for v in spec.variables if v.key == key) for key in spec.map_variables)
         x = np.array([t.params[a.key] for t in ok], dtype=float)
         y = np.array([t.params[b.key] for t in ok], dtype=float)
         for q in spec.quantities():

@@ -8,6 +8,7 @@ constraints, the cheap fidelity and the confirmation.
     startup = 8                             # of them, the first ones: a Latin hypercube over the variables
     seed = 1
     sampler = "tpe"                         # tpe (default) | nsga2 | random
+    map = ["quench.bath.id_jet_speed_mm_s", "quench.bath.od_jet_speed_mm_s"]   # the maps' two variables
 
     [set]                                   # fixed overrides of the case (dotted keys)
     quench.time_s = 900
@@ -59,7 +60,7 @@ from quenchsim.design.quantities import summary_quantities, unknown_quantity_hin
 from quenchsim.errors import InputError, require
 
 TABLES = ("study", "set", "variables", "objectives", "constraints", "fidelity", "confirm")
-STUDY_KEYS = ("case", "condition", "name", "trials", "startup", "seed", "sampler")
+STUDY_KEYS = ("case", "condition", "name", "trials", "startup", "seed", "sampler", "map")
 SAMPLERS = ("tpe", "nsga2", "random")
 VARIABLE_KEYS = {"low", "high", "log", "integer", "step", "choices"}
 CONSTRAINT = re.compile(r"^\s*([A-Za-z0-9_.]+)\s*(>=|<=)\s*([-+0-9.eE]+)\s*$")
@@ -167,6 +168,7 @@ class StudySpec:
     seed: int
     sampler: str
     fixed: dict[str, Any]
+    map_variables: tuple[str, ...] = ()
 
     def case_at(self, point: dict[str, Any], full: bool = False) -> Case:
         """The case of one point (the variables' values), at the cheap fidelity unless ``full``."""
@@ -362,12 +364,17 @@ def parse_study(raw: dict[str, Any], base_dir: Path, name: str = "study") -> Stu
     trials = _int(head, "trials", 24, "study.trials", 1)
     startup = _int(head, "startup", min(8, trials), "study.startup", 0)
     require(startup <= trials, "study.startup", startup, f"must be <= study.trials ({trials})")
+    numeric = [v.key for v in variables if v.numeric]
+    map_variables = head.get("map", numeric[:2] if len(numeric) >= 2 else [])
+    require(isinstance(map_variables, list) and (len(map_variables) == 2 and set(map_variables) <= set(numeric)
+                                                 or len(numeric) < 2 and not map_variables),
+            "study.map", map_variables, f"must name two of the numeric variables ({', '.join(numeric)})")
     sampler = head.get("sampler", "tpe")
     require(sampler in SAMPLERS, "study.sampler", sampler, f"must be one of {', '.join(SAMPLERS)}")
     return StudySpec(name=str(head.get("name", name)), case=case, variables=tuple(variables),
                      objectives=tuple(objectives), constraints=tuple(constraints), fidelity=fidelity, confirm=confirm,
                      trials=trials, startup=startup, seed=_int(head, "seed", 0, "study.seed", 0), sampler=sampler,
-                     fixed=fixed)
+                     fixed=fixed, map_variables=tuple(map_variables))
 
 
 def load_study(path: str | Path) -> StudySpec:
