@@ -468,12 +468,14 @@ def run_on_dask(args: dict[str, tuple[Any, ...]], scheduler: str | None, workers
     client, cluster = _client(scheduler, workers)
     futures = {}
     try:
-        # a base case table shared by several cases (a sweep's) is shipped to the workers once
+        # a base case table shared by several cases (a sweep's) is shipped to the workers once; scattered inside a
+        # list: Dask scatters a dict value by value under the dict's own keys ("quench", "geometry", ...), so two
+        # tables on one scheduler would share those keys and every case would run the first table's values
         shipped: dict[str, Any] = {}
         for name, (raw_case, *rest) in args.items():
             text = json.dumps(raw_case, sort_keys=True, default=str)
             if text not in shipped:
-                shipped[text] = client.scatter(raw_case, broadcast=True)
+                shipped[text] = client.scatter([raw_case], broadcast=True)[0]
             futures[client.submit(run_point, shipped[text], *rest, key=f"quenchsim-{name}-{time.time_ns()}",
                                   pure=False)] = name
         for future in as_completed(futures):
