@@ -247,9 +247,14 @@ def derived_files(inputs: list[FreeInput], factors: list[float], folder: Path,
     return overrides
 
 
+def data_name(kind: str, case: Case) -> Any:
+    """The data file of family ``kind`` a case reads (its field's value, or the family's default for a bath-model
+    case), or None."""
+    spec = KINDS[kind]
+    return case.get(spec.case_field, spec.default if case.get("quench.htc_model") == "bath" else None)
+
+
 def used_by(inp: FreeInput, case: Case) -> bool:
     """Whether a case reads the input's data file."""
-    kind = KINDS[inp.kind]
-    default = kind.default if case.get("quench.htc_model") == "bath" else None
-    name = case.get(kind.case_field, default)
+    name = data_name(inp.kind, case)
     return isinstance(name, str) and Path(name).stem == inp.data_name
