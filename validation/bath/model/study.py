@@ -292,8 +292,9 @@ def run(workdir: Path) -> dict[str, Any]:
     published = study_targets(__file__)
     written: list[Path] = []
     md = ["Model: `quenchsim/bath` (equations and sources in the module "
-          "docstrings); oil data: `materials/quenchants/reference_quench_oil.toml`; nozzle layout: "
-          "`[quench.bath]` of the case files (documented assumptions in their comments).", ""]
+          "docstrings); oil data: `materials/quenchants/reference_quench_oil.toml`; nozzle layout and flow "
+          "constants: `materials/baths/reference_nozzles.toml` and `materials/baths/jet_bath.toml` (assumptions with "
+          "priors), named by the case files' `[quench.bath]`.", ""]
     md += ["## The model in short", "",
            "- Each nozzle row acts where it hits. Convection: Martin's impinging-jet correlations (Adv. Heat Transfer 13 "
            "(1977) 1): the single-nozzle local distribution (the local value whose disc mean is Martin's, r/D >= 2.5; "
@@ -475,7 +476,8 @@ def run(workdir: Path) -> dict[str, Any]:
     wall = study["runs"]["1"]["wall_s"]
     md += ["## Cost of the bath model", "",
            f"Case A, condition 1, on the {cost['points']} facet quadrature points of the case mesh "
-           f"({cost['elements']} elements), T grid of {cost['grid']} temperatures:", "",
+           f"({cost['elements']} elements), T grid of {cost['grid']} temperatures (wall times on a shared machine: "
+           "upper bounds, not a speed claim):", "",
            f"- building the curves (once per stage): {cost['build_s'] * 1e3:.0f} ms",
            f"- one vectorised interpolation `htc(T_surface)`: {cost['call_s'] * 1e6:.0f} us",
            f"- the full thermal run of the study above (condition 1, quench 120 s): {wall:.0f} s wall; the solver "
