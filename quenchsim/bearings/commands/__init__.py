@@ -11,6 +11,7 @@ VERBS: dict[str, str] = {
     "grease-life": "quenchsim.bearings.commands.grease_life",
     "kinematics": "quenchsim.bearings.commands.kinematics",
     "hertz": "quenchsim.bearings.commands.hertz",
+    "roller-clutch": "quenchsim.bearings.commands.roller_clutch",
     "free-run": "quenchsim.bearings.commands.free_run",
     "big-end": "quenchsim.bearings.commands.big_end",
 }
