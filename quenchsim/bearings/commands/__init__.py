@@ -12,6 +12,7 @@ VERBS: dict[str, str] = {
     "kinematics": "quenchsim.bearings.commands.kinematics",
     "hertz": "quenchsim.bearings.commands.hertz",
     "roller-clutch": "quenchsim.bearings.commands.roller_clutch",
+    "mode2": "quenchsim.bearings.commands.mode2",
     "free-run": "quenchsim.bearings.commands.free_run",
     "big-end": "quenchsim.bearings.commands.big_end",
 }

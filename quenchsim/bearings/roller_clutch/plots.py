@@ -1,5 +1,5 @@
-"""Figures of the roller-clutch module (matplotlib, Agg): load per unit torque against torque, and the outer
-ring's hoop stress around one roller pitch."""
+"""Figures of the roller-clutch module (quenchsim.figures, no pyplot state): load per unit torque against
+torque, and the outer ring's hoop stress around one roller pitch."""
 
 from __future__ import annotations
 
@@ -7,13 +7,10 @@ import math
 import pathlib
 from collections.abc import Sequence
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from quenchsim.bearings.roller_clutch import analysis, wedge  # noqa: E402
+from quenchsim.bearings.roller_clutch import analysis, wedge
+from quenchsim.figures import save, subplots
 
 
 def load_per_torque(geometry: wedge.ClutchGeometry, torques_Nm: np.ndarray, printed: Sequence[tuple[float, float]],
@@ -22,7 +19,7 @@ def load_per_torque(geometry: wedge.ClutchGeometry, torques_Nm: np.ndarray, prin
     (torque, roller load) points."""
     comp = [wedge.engage(geometry, t).load_per_torque_N_per_Nm for t in torques_Nm]
     rigid = wedge.engage(geometry, float(torques_Nm[-1]), compliant=False).load_per_torque_N_per_Nm
-    fig, ax = plt.subplots(figsize=(6, 3.8))
+    fig, ax = subplots(figsize=(6, 3.8))
     ax.plot(torques_Nm, comp, label="compliant wedge (contacts + ring)")
     ax.axhline(rigid, color="0.5", ls="--", label="rigid wedge (same free angle)")
     ax.plot([t for t, _ in printed], [q / t for t, q in printed], "ko", label="printed (Table 2)")
@@ -30,9 +27,7 @@ def load_per_torque(geometry: wedge.ClutchGeometry, torques_Nm: np.ndarray, prin
     ax.set_ylabel("roller load / torque (N per N m)")
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save(fig, path)
 
 
 def hoop_around_pitch(geometry: wedge.ClutchGeometry, state: analysis.ClutchState, path: pathlib.Path,
@@ -44,7 +39,7 @@ def hoop_around_pitch(geometry: wedge.ClutchGeometry, state: analysis.ClutchStat
     th = np.linspace(-math.pi / g.rollers, math.pi / g.rollers, 721)
     bore = ring.field(ring.a, th).s_tt / 1e6
     outer = ring.field(ring.b, th).s_tt / 1e6
-    fig, ax = plt.subplots(figsize=(6, 3.8))
+    fig, ax = subplots(figsize=(6, 3.8))
     ax.plot(np.degrees(th), bore, label="bore (series)")
     ax.plot(np.degrees(th), outer, label="outer surface (series)")
     ax.axhline(state.lame.bore_hoop_Pa / 1e6, color="C0", ls="--", label="bore (Lame)")
@@ -56,6 +51,4 @@ def hoop_around_pitch(geometry: wedge.ClutchGeometry, state: analysis.ClutchStat
     ax.set_title(label, fontsize=9)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save(fig, path)
