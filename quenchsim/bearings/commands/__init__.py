@@ -13,6 +13,7 @@ VERBS: dict[str, str] = {
     "hertz": "quenchsim.bearings.commands.hertz",
     "roller-clutch": "quenchsim.bearings.commands.roller_clutch",
     "mode2": "quenchsim.bearings.commands.mode2",
+    "encoder": "quenchsim.bearings.commands.encoder",
     "free-run": "quenchsim.bearings.commands.free_run",
     "big-end": "quenchsim.bearings.commands.big_end",
 }

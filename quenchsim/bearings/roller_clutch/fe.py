@@ -18,6 +18,7 @@ from skfem.models.elasticity import lame_parameters, linear_elasticity
 
 from quenchsim.errors import require
 from quenchsim.fem.linalg import SparseCholesky
+from quenchsim.fem.probes import gradient_at
 
 
 @dataclass(frozen=True)
@@ -116,7 +117,7 @@ def solve_ring(mesh: MeshTri, bore_radius_m: float, outer_radius_m: float, E_Pa:
     uxy = basis.probes(xy) @ u  # x components of every point, then y
     npt = xy.shape[1]
     u_x, u_y = uxy[:npt], uxy[npt:]
-    grad = _gradient_at(basis, u, xy)
+    grad = gradient_at(basis, u, xy)
     exx, eyy, exy = grad[0, 0], grad[1, 1], 0.5 * (grad[0, 1] + grad[1, 0])
     sxx = lam_ps * (exx + eyy) + 2.0 * mu * exx
     syy = lam_ps * (exx + eyy) + 2.0 * mu * eyy
@@ -149,27 +150,6 @@ def _rigid_modes(basis: Basis) -> np.ndarray:
     comp[basis.nodal_dofs[1]] = 1
     comp[basis.facet_dofs[1]] = 1
     return np.column_stack([(comp == 0).astype(float), (comp == 1).astype(float), np.where(comp == 0, -y, x)])
-
-
-def _gradient_at(basis: Basis, u: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """Displacement gradient (2, 2, points) of the FE field ``u`` at the points ``x`` (2, points): the mean of
-    the gradients of every element the point lies in (a point on a vertex lies in all elements around it)."""
-    mesh = basis.mesh
-    grad = np.zeros((2, 2, x.shape[1]))
-    for i in range(x.shape[1]):
-        d = np.hypot(mesh.p[0] - x[0, i], mesh.p[1] - x[1, i])
-        vertex = int(np.argmin(d))
-        if d[vertex] < 1e-9 * np.abs(mesh.p).max():
-            cells = np.flatnonzero(np.any(mesh.t == vertex, axis=0))
-        else:
-            cells = mesh.element_finder(mapping=basis.mapping)(x[0, i:i + 1], x[1, i:i + 1])
-        at = np.repeat(x[:, i:i + 1], cells.size, axis=1)
-        local = basis.mapping.invF(at[:, :, np.newaxis], tind=cells)
-        g = np.zeros((2, 2, cells.size))
-        for k in range(basis.Nbfun):
-            g += basis.elem.gbasis(basis.mapping, local, k, tind=cells)[0].grad[..., 0] * u[basis.element_dofs[k, cells]]
-        grad[:, :, i] = g.mean(axis=-1)
-    return grad
 
 
 def _outer_chord_radius(mesh: MeshTri, outer_radius_m: float, theta: np.ndarray) -> np.ndarray:
