@@ -34,7 +34,7 @@ Line-contact stresses: :func:`quenchsim.bearings.hertz.line_contact` (flat: radi
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from scipy.optimize import brentq
 
@@ -169,10 +169,10 @@ def engage(geometry: ClutchGeometry, torque: float, *, compliant: bool = True) -
     g = geometry
     rigid = torque / (g.rollers * math.tan(g.free_wedge_angle_rad / 2.0) * g.bore_radius_m)
     if compliant:
-        lo, hi = 0.0, rigid
-        if torque_Nm(g, hi) < torque:
-            raise SolverError(f"roller load not bracketed at torque {torque} N m")  # eps cannot shrink: unreachable
-        N = brentq(lambda q: torque_Nm(g, q) - torque, lo, hi, xtol=1e-9, rtol=1e-13)
+        # the take-up only opens the wedge, so T(N) >= the rigid T(N) and the root lies below the rigid load
+        if torque_Nm(g, rigid) < torque:
+            raise SolverError(f"roller load not bracketed at torque {torque} N m (the wedge closed under load)")
+        N = brentq(lambda q: torque_Nm(g, q) - torque, 0.0, rigid, xtol=1e-9, rtol=1e-13)
     else:
         N = rigid
     eps = wedge_angle_rad(g, N, compliant=compliant)
@@ -190,8 +190,6 @@ def free_wedge_angle_for(geometry: ClutchGeometry, torque: float, roller_load_N:
     of :func:`engage` used to set eps0 from one measured (torque, load) pair."""
     require(math.isfinite(roller_load_N) and roller_load_N > 0.0, "roller_load_N", roller_load_N, "must be positive")
     require(math.isfinite(torque) and torque > 0.0, "torque_Nm", torque, "must be a positive finite torque")
-    from dataclasses import replace
-
     target = torque / (geometry.rollers * roller_load_N * geometry.bore_radius_m)  # tan(eps/2) needed
 
     def excess(eps0: float) -> float:
