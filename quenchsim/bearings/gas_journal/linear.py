@@ -45,7 +45,7 @@ from quenchsim.bearings.gas_journal.solvers import newton_direct
 from quenchsim.bearings.gas_journal.transient import film_frame
 from quenchsim.errors import SolverError, require
 
-BASE_TOLERANCE = 1e-11  # ||R||_2 of the static film the perturbation is taken about
+BASE_TOLERANCE = 1e-10  # ||R||_2 of the static film the perturbation is taken about
 FD_STEP = 1e-7  # central-difference step of the flux derivatives (P ~ 1, displacement ~ 1)
 ISOTROPY_TOLERANCE = 1e-6  # grooved rotor: largest relative anisotropy of the rotor-frame impedance accepted
 

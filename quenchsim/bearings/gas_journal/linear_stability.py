@@ -79,10 +79,11 @@ def linear_threshold(film: LinearisedFilm, whirl_scan: tuple[float, float, int] 
     return LinearThreshold(mass, 144.0 * mass / film.lam ** 2, gamma, sorted(crossings))
 
 
-def whirl_root(film: LinearisedFilm, mass: float, whirl_guess: float, tol: float = 1e-10,
+def whirl_root(film: LinearisedFilm, mass: float, whirl_guess: complex, tol: float = 1e-10,
                max_iterations: int = 50) -> tuple[float, float]:
     """(growth rate per unit T, whirl ratio) of the rotor of mass M = ``mass`` on ``film``: the root tau of
-    det(Z(tau / 2) - M tau^2 I) = 0 nearest the real whirl ``2 whirl_guess`` (secant iteration)."""
+    det(Z(tau / 2) - M tau^2 I) = 0 nearest ``2 whirl_guess`` (secant iteration; a complex guess
+    gamma - i g / 2 continues a root of growth rate g)."""
     require(mass > 0.0, "mass", mass, "must be > 0")
 
     def residual(tau: complex) -> complex:
