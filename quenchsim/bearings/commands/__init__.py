@@ -13,4 +13,5 @@ VERBS: dict[str, str] = {
     "hertz": "quenchsim.bearings.commands.hertz",
     "free-run": "quenchsim.bearings.commands.free_run",
     "big-end": "quenchsim.bearings.commands.big_end",
+    "doj": "quenchsim.bearings.commands.doj",
 }
