@@ -16,4 +16,5 @@ VERBS: dict[str, str] = {
     "encoder": "quenchsim.bearings.commands.encoder",
     "free-run": "quenchsim.bearings.commands.free_run",
     "big-end": "quenchsim.bearings.commands.big_end",
+    "doj": "quenchsim.bearings.commands.doj",
 }
