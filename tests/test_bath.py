@@ -52,18 +52,38 @@ def test_bad_inputs_name_the_field(changes, field):
     assert str(err.value).startswith(field)
 
 
-def test_bad_nozzle_row():
+def nozzle_spec():
+    """Case A's bath with an explicit nozzles table (instead of the reference layout file)."""
     s = spec()
+    del s["layout"]
+    s["nozzles"] = {"id": {"diameter_mm": 8.0, "count": 8, "standoff_mm": 60.0, "height_mm": 86.5},
+                    "od_upper": {"diameter_mm": 10.0, "count": 12, "standoff_mm": 100.0, "height_mm": 129.75}}
+    return s
+
+
+def test_explicit_nozzles_equal_the_layout_file():
+    s = nozzle_spec()
+    s["nozzles"]["od_lower"] = {"diameter_mm": 10.0, "count": 12, "standoff_mm": 100.0, "height_mm": 43.25,
+                                "inclination_deg": 15.0}
+    assert np.allclose(boundary_htc(parse_bath(s), RING_A).h_W_m2K, boundary_htc(parse_bath(spec()), RING_A).h_W_m2K)
+
+
+def test_bad_nozzle_row():
+    s = nozzle_spec()
     s["nozzles"]["od_upper"]["diameter_mm"] = 0.0
     with pytest.raises(InputError, match="nozzles.od_upper.diameter_mm"):
         parse_bath(s)
-    s = spec()
+    s = nozzle_spec()
     s["nozzles"]["od_upper"]["count"] = 2.5
     with pytest.raises(InputError, match="nozzles.od_upper.count"):
         parse_bath(s)
-    s = spec()
+    s = nozzle_spec()
     s["nozzles"]["sideways"] = dict(s["nozzles"]["od_upper"])
     with pytest.raises(InputError, match="nozzles.sideways.side"):
+        parse_bath(s)
+    s = spec()
+    s["layout"] = "reference_nozzles.toml"
+    with pytest.raises(InputError, match="quench.bath.layout"):
         parse_bath(s)
 
 

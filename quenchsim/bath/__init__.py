@@ -17,7 +17,7 @@ The ``[quench.bath]`` table (units as suffixes; condition overrides merged in be
     quenchant = "reference_quench_oil"   # materials/quenchants/<name>.toml: a liquid (boiling-curve) oil, or a
                                          # still-bath curve from the ISO 9950 probe (a library oil)
     liquid_properties = "reference_quench_oil"  # only with a still-bath curve: the liquid file whose properties
-                                         # and vapour-film agitation law the flow uses (default shown)
+                                         # and boiling-curve constants the flow uses (default shown)
     oil_temperature_C = 60.0             # bulk oil; must lie below the (liquid's) boiling point
     agitation = "flow"                   # "still": no nozzles, rotation or flow (those keys are then errors)
     agitation_m_s = 0.0                  # bulk oil speed past every face (tank agitator), 0-10 m/s, default 0
@@ -27,10 +27,15 @@ The ``[quench.bath]`` table (units as suffixes; condition overrides merged in be
     rotation_rpm = 11.0                  # turntable speed (>= 0), default 0
     id_jet_speed_mm_s = 1000.0           # exit speed of every "id" row without its own jet_speed_mm_s (>= 0)
     od_jet_speed_mm_s = 5340.0           # same for "od" rows
-    oil_swirl_fraction = 0.0             # share of the part's rotation the nearby oil follows (0-1), default 0
+    layout = "reference_nozzles"         # materials/baths/<name>.toml (kind = "nozzle_layout"): the nozzle rows with
+                                         # priors (instead of [quench.bath.nozzles.*] tables; not both)
+    constants = "jet_bath"               # materials/baths/<name>.toml (kind = "bath_constants"), default jet_bath: the
+                                         # declared flow constants below, each with a prior; a case key overrides one
+    oil_swirl_fraction = 0.05            # share of the part's rotation the oil outside the ring follows (0-1)
+    bore_swirl_fraction = 0.5            # share of the bore's rotation the oil column in the bore follows (0-1)
     corner_carryover = 0.3               # share of a wall jet carried round a convex edge onto a face
-                                         # turned ~90 deg from the jet (0-1), default 0.3
-    id_crossflow_up_m_s = 0.0            # vertical oil speed (up > 0) the "id" jets cross on their way, default 0
+                                         # turned ~90 deg from the jet (0-1)
+    id_crossflow_up_m_s = 0.2            # vertical oil speed (up > 0) the "id" jets cross on their way
     od_crossflow_up_m_s = 0.0            # same for the "od" rows (-5..5 m/s)
     T_max_C = 1100.0                     # top of the HTC(T) grid (clamped above), default 1100
     T_step_K = 2.0                       # grid step, default 2
@@ -40,18 +45,21 @@ The ``[quench.bath]`` table (units as suffixes; condition overrides merged in be
     diameter_mm = 10.0                   # nozzle exit diameter (> 0)
     count = 12                           # nozzles in the row, evenly spaced round the part (>= 1)
     standoff_mm = 100.0                  # horizontal distance from exit to the part surface (> 0)
-    height_mm = 130.0                    # nozzle height above the turntable (the part's bottom face)
+    height_mm = 130.0                    # nozzle height above the turntable (the part's bottom face), or
+                                         # height_fraction = 0.75 of the part's height (one of the two)
     inclination_deg = 0.0                # > 0 aims the jet downward (-80..80), default 0
     jet_speed_mm_s = 5340.0              # optional: overrides <side>_jet_speed_mm_s for this row
 
-The documented layouts of the two reference rings are the ``[quench.bath]`` tables of ``cases/crb_outer_ring.toml``
-and ``cases/srb_outer_ring.toml`` (assumptions explained in their comments).
+The two reference rings name the layout ``materials/baths/reference_nozzles.toml`` and the constants
+``materials/baths/jet_bath.toml`` (every assumption there with its prior, addressable by the calibration as
+``layout.reference_nozzles.nozzles.<row>.<key>`` and ``bath.jet_bath.flow.<key>``).
 Errors a user can cause (negative speed, oil at or above its boiling point, unknown quenchant, ...)
 raise :class:`quenchsim.errors.InputError` naming the field.
 
-Modules: quenchant (property files, Vogel viscosity), correlations (jets, convection, boiling),
-flow (local speed and run length per point), htc (boiling curve, BoundaryHTC, air), outline (simple
-section outlines and the ISO 9950 probe for diagnostics), reference (reference nozzle layouts).
+Modules: quenchant (property files, Vogel viscosity), correlations (free and impinging jets, convection, boiling,
+critical flux, film collapse), config (the table, layout and constants files), flow (local speed, run length and
+impinging-jet shape per point), htc (boiling curve, BoundaryHTC, air), segments (per-segment tables, jet
+response), outline (simple section outlines and the ISO 9950 probe for diagnostics), plots.
 """
 
 from quenchsim.bath.config import BathConfig, NozzleRow, parse_bath

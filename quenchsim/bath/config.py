@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 from quenchsim.bath.quenchant import (STILL_BATH_KIND, OilProperties, ProbeQuenchant, load_oil,
@@ -15,8 +16,20 @@ SIDES = ("id", "od")
 AGITATION = ("flow", "still")
 """``agitation = "still"``: no nozzles, no rotation, no bulk flow (every flow key is then an error); ``"flow"``
 (default): the nozzles, rotation and bulk flow the table gives (none given is also a still bath)."""
-FLOW_KEYS = ("rotation_rpm", "nozzles", "id_jet_speed_mm_s", "od_jet_speed_mm_s", "oil_swirl_fraction",
-             "corner_carryover", "id_crossflow_up_m_s", "od_crossflow_up_m_s", "agitation_m_s")
+CONSTANT_KEYS = ("corner_carryover", "oil_swirl_fraction", "bore_swirl_fraction", "id_crossflow_up_m_s",
+                 "od_crossflow_up_m_s")
+"""The declared flow constants: read from the ``constants`` data file (materials/baths/NAME.toml, ``[flow]``), each
+overridable by a case key of the same name."""
+CONSTANT_LIMITS = {"corner_carryover": (0.0, 1.0), "oil_swirl_fraction": (0.0, 1.0), "bore_swirl_fraction": (0.0, 1.0),
+                   "id_crossflow_up_m_s": (-5.0, 5.0), "od_crossflow_up_m_s": (-5.0, 5.0)}
+DEFAULT_CONSTANTS = "jet_bath"
+"""The declared flow constants used when a case names none (materials/baths/jet_bath.toml)."""
+FLOW_KEYS = ("rotation_rpm", "nozzles", "layout", "id_jet_speed_mm_s", "od_jet_speed_mm_s", "agitation_m_s",
+             *CONSTANT_KEYS)
+BATH_KEYS = ("quenchant", "liquid_properties", "oil_temperature_C", "agitation", "support", "support_open_fraction",
+             "turntable_open_fraction", "constants", "T_max_C", "T_step_K", *FLOW_KEYS)
+ROW_KEYS = ("side", "diameter_mm", "count", "standoff_mm", "height_mm", "height_fraction", "inclination_deg",
+            "jet_speed_mm_s")
 SUPPORTS = ("turntable", "fixture", "hanging")
 """How the part is held: on a turntable or fixture (its bottom face is covered except ``support_open_fraction``;
 that covered share is treated as adiabatic), or hanging (every face open to the oil)."""
@@ -41,7 +54,7 @@ class NozzleRow:
     side "id": inside the bore, aimed outward at the bore; "od": outside, aimed inward at the OD.
     jet_speed_m_s is the exit speed; standoff_m the horizontal distance from the exit to the surface;
     height_m the nozzle height above the turntable (the part's bottom face); inclination_rad > 0 aims
-    the jet downward.
+    the jet downward. A layout file gives the height as ``height_fraction`` of the part's height instead.
     """
 
     name: str
@@ -50,8 +63,13 @@ class NozzleRow:
     diameter_m: float
     count: int
     standoff_m: float
-    height_m: float
+    height_m: float | None
     inclination_rad: float
+    height_fraction: float | None = None
+
+    def height_above_bottom_m(self, part_height_m: float) -> float:
+        """Nozzle height above the part's bottom face: ``height_m``, or ``height_fraction`` of the part's height."""
+        return self.height_m if self.height_m is not None else float(self.height_fraction) * part_height_m
 
 
 @dataclass(frozen=True)
@@ -71,6 +89,7 @@ class BathConfig:
     rotation_rpm: float
     rows: tuple[NozzleRow, ...]
     oil_swirl_fraction: float
+    bore_swirl_fraction: float
     turntable_open_fraction: float
     corner_carryover: float
     crossflow_up_m_s: dict[str, float]
@@ -97,10 +116,20 @@ def _number(spec: dict[str, Any], key: str, field: str, default: float | None = 
     return float(value)
 
 
-def _row(name: str, spec: Any, bath: dict[str, Any], field: str) -> NozzleRow:
-    where = f"{field}.nozzles.{name}"
+def _plain(spec: dict[str, Any]) -> dict[str, Any]:
+    """A layout row with its ``{value, range, source}`` entries replaced by their values."""
+    return {k: (v["value"] if isinstance(v, dict) and "value" in v else v) for k, v in spec.items()
+            if k not in ("source", "range", "range_factor")}
+
+
+def _row(name: str, spec: Any, bath: dict[str, Any], field: str, where: str | None = None) -> NozzleRow:
+    where = where or f"{field}.nozzles.{name}"
     if not isinstance(spec, dict):
         raise InputError(where, spec, "must be a table {diameter_mm, count, standoff_mm, height_mm, ...}")
+    spec = _plain(spec)
+    for key in spec:
+        if key not in ROW_KEYS:
+            raise InputError(f"{where}.{key}", spec[key], f"unknown key; a nozzle row takes {', '.join(ROW_KEYS)}")
     side = spec.get("side", name.split("_")[0])
     if side not in SIDES:
         raise InputError(f"{where}.side", side, "must be 'id' or 'od' (or start the row name with id_/od_)")
@@ -109,19 +138,52 @@ def _row(name: str, spec: Any, bath: dict[str, Any], field: str) -> NozzleRow:
     else:
         speed = _number(bath, f"{side}_jet_speed_mm_s", field, lo=0.0, hi=MAX_JET_SPEED_MM_S)
     count = spec.get("count")
+    if isinstance(count, float) and count.is_integer():
+        count = int(count)
     if isinstance(count, bool) or not isinstance(count, int) or count < 1:
         raise InputError(f"{where}.count", count, "must be an integer >= 1")
+    if ("height_mm" in spec) == ("height_fraction" in spec):
+        raise InputError(f"{where}.height_mm", spec.get("height_mm"), "give height_mm or height_fraction (of the "
+                                                                      "part's height), one of them")
+    height = _number(spec, "height_mm", where, lo=0.0) * 1e-3 if "height_mm" in spec else None
+    fraction = _number(spec, "height_fraction", where, lo=0.0, hi=1.0) if "height_fraction" in spec else None
     return NozzleRow(name=name, side=side, jet_speed_m_s=speed * 1e-3,
                      diameter_m=_number(spec, "diameter_mm", where, lo=0.0, lo_open=True) * 1e-3, count=count,
                      standoff_m=_number(spec, "standoff_mm", where, lo=0.0, lo_open=True) * 1e-3,
-                     height_m=_number(spec, "height_mm", where, lo=0.0) * 1e-3,
+                     height_m=height, height_fraction=fraction,
                      inclination_rad=math.radians(_number(spec, "inclination_deg", where, 0.0, lo=-80.0, hi=80.0)))
+
+
+def load_constants(name: str, field: str = "quench.bath.constants") -> dict[str, float]:
+    """The declared flow constants of ``materials/baths/NAME.toml`` (``kind = "bath_constants"``, table ``[flow]``)."""
+    data = load_data_file(name, "baths", field)
+    if data.get("kind") != "bath_constants":
+        raise InputError(field, name, f"is a {data.get('kind', 'untyped')} file; a bath_constants file is needed")
+    flow = _plain(data.get("flow", {}))
+    for key in CONSTANT_KEYS:
+        lo, hi = CONSTANT_LIMITS[key]
+        _number(flow, key, f"{Path(name).stem}.flow", lo=lo, hi=hi)
+    return {key: float(flow[key]) for key in CONSTANT_KEYS}
+
+
+def load_layout(name: str, bath: dict[str, Any], field: str = "quench.bath.layout") -> tuple[NozzleRow, ...]:
+    """The nozzle rows of a layout file ``materials/baths/NAME.toml`` (``kind = "nozzle_layout"``, ``[nozzles.*]``)."""
+    data = load_data_file(name, "baths", field)
+    if data.get("kind") != "nozzle_layout":
+        raise InputError(field, name, f"is a {data.get('kind', 'untyped')} file; a nozzle_layout file is needed")
+    rows = data.get("nozzles", {})
+    if not isinstance(rows, dict) or not rows:
+        raise InputError(f"{Path(name).stem}.nozzles", rows, "needs at least one [nozzles.<row>] table")
+    return tuple(_row(row, spec, bath, field, where=f"{Path(name).stem}.nozzles.{row}") for row, spec in rows.items())
 
 
 def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
     """Parse a ``[quench.bath]`` table (condition overrides already merged); errors name the field."""
     if not isinstance(spec, dict):
         raise InputError(field, spec, "must be a table")
+    for key in spec:
+        if key not in BATH_KEYS:
+            raise InputError(f"{field}.{key}", spec[key], f"unknown key; [{field}] takes {', '.join(BATH_KEYS)}")
     name = spec.get("quenchant")
     if not isinstance(name, str) or not name:
         raise InputError(f"{field}.quenchant", name, "is required: the name of a materials/quenchants/*.toml file")
@@ -165,7 +227,21 @@ def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
     nozzles = spec.get("nozzles", {})
     if not isinstance(nozzles, dict):
         raise InputError(f"{field}.nozzles", nozzles, "must be a table of named rows [nozzles.<name>]")
-    rows = tuple(_row(row_name, row, spec, field) for row_name, row in nozzles.items())
+    if "layout" in spec:
+        if nozzles:
+            raise InputError(f"{field}.layout", spec["layout"], "give a layout file or a nozzles table, not both")
+        if not isinstance(spec["layout"], str) or not spec["layout"]:
+            raise InputError(f"{field}.layout", spec["layout"], "must be the name of a materials/baths/*.toml layout")
+        rows = load_layout(spec["layout"], spec, f"{field}.layout")
+    else:
+        rows = tuple(_row(row_name, row, spec, field) for row_name, row in nozzles.items())
+    constants_name = spec.get("constants", DEFAULT_CONSTANTS)
+    if not isinstance(constants_name, str) or not constants_name:
+        raise InputError(f"{field}.constants", constants_name, "must be the name of a materials/baths/*.toml file")
+    constants = load_constants(constants_name, f"{field}.constants")
+    for key in CONSTANT_KEYS:
+        if key in spec:
+            constants[key] = _number(spec, key, field, lo=CONSTANT_LIMITS[key][0], hi=CONSTANT_LIMITS[key][1])
     T_max = _number(spec, "T_max_C", field, 1100.0, hi=2000.0)
     if T_max <= oil.boiling_point_C:
         raise InputError(f"{field}.T_max_C", T_max, f"must exceed the boiling point {oil.boiling_point_C:g} C")
@@ -175,10 +251,9 @@ def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
         support=support, oil_temperature_C=T_oil,
         rotation_rpm=_number(spec, "rotation_rpm", field, 0.0, lo=0.0, hi=MAX_ROTATION_RPM),
         rows=rows,
-        oil_swirl_fraction=_number(spec, "oil_swirl_fraction", field, 0.0, lo=0.0, hi=1.0),
+        oil_swirl_fraction=constants["oil_swirl_fraction"], bore_swirl_fraction=constants["bore_swirl_fraction"],
         turntable_open_fraction=open_fraction,
-        corner_carryover=_number(spec, "corner_carryover", field, 0.3, lo=0.0, hi=1.0),
-        crossflow_up_m_s={side: _number(spec, f"{side}_crossflow_up_m_s", field, 0.0, lo=-5.0, hi=5.0)
-                          for side in SIDES},
+        corner_carryover=constants["corner_carryover"],
+        crossflow_up_m_s={side: constants[f"{side}_crossflow_up_m_s"] for side in SIDES},
         T_max_C=T_max,
         T_step_K=_number(spec, "T_step_K", field, 2.0, lo=0.1, hi=50.0))

@@ -147,3 +147,129 @@ def radiation_htc(T_surface_C: np.ndarray, T_ambient_C: np.ndarray, emissivity: 
     Ts = np.asarray(T_surface_C, dtype=float) + 273.15
     Ta = np.asarray(T_ambient_C, dtype=float) + 273.15
     return emissivity * STEFAN_BOLTZMANN * (Ts**2 + Ta**2) * (Ts + Ta)
+
+
+# --- Impinging round jets (Martin 1977) ------------------------------------------------------------------------------
+# H. Martin, "Heat and mass transfer between impinging gas jets and solid surfaces", Adv. Heat Transfer 13 (1977)
+# 1-60, as given in Incropera & DeWitt, Fundamentals of Heat and Mass Transfer, sec. 7.7 (single round nozzle, SRN;
+# array of round nozzles, ARN). Fitted to the measurements Martin compiled: SRN 2e3 <= Re <= 4e5, 2 <= H/D <= 12,
+# 2.5 <= r/D <= 7.5; ARN 2e3 <= Re <= 1e5, 2 <= H/D <= 12, 0.004 <= A_r <= 0.04.
+MARTIN_RE_RANGE = (2.0e3, 4.0e5)
+MARTIN_H_D_RANGE = (2.0, 12.0)
+MARTIN_SRN_R_D_RANGE = (2.5, 7.5)
+MARTIN_ARN_AREA_RANGE = (0.004, 0.04)
+MARTIN_PR_EXPONENT = 0.42
+# Local shape inside r/D < 2.5 (the stagnation zone Martin's average does not resolve): R. J. Goldstein,
+# A. I. Behbahani, K. K. Heppelmann, "Streamwise distribution of the recovery factor and the local heat transfer
+# coefficient to an impinging circular air jet", Int. J. Heat Mass Transfer 29 (1986) 1227, local fit to their
+# measurements Nu/Re^0.76 = (24 - |H/D - 7.75|)/(533 + 44 (r/D)^1.394) (Re 6.1e4-1.24e5, H/D 6-12): the radial shape
+# 533/(533 + 44 x^1.394) is used, scaled to Martin's local value at r/D = 2.5.
+GOLDSTEIN_A, GOLDSTEIN_B, GOLDSTEIN_N = 533.0, 44.0, 1.394
+
+
+def martin_reynolds_function(Re: np.ndarray) -> np.ndarray:
+    """Martin's F_1(Re) = 2 Re^(1/2) (1 + 0.005 Re^0.55)^(1/2) (single round nozzle)."""
+    Re = np.maximum(np.asarray(Re, dtype=float), 0.0)
+    return 2.0 * np.sqrt(Re) * np.sqrt(1.0 + 0.005 * Re**0.55)
+
+
+def martin_srn_geometry(r_D: np.ndarray, H_D: np.ndarray) -> np.ndarray:
+    """Martin's G for a single round nozzle as a function of r/D and H/D:
+    G = (D/r)(1 - 1.1 D/r)/(1 + 0.1 (H/D - 6) D/r) (Incropera's 2 A_r^0.5 (1 - 2.2 A_r^0.5)/(1 + 0.2 (H/D - 6) A_r^0.5),
+    A_r = D^2/(4 r^2))."""
+    x = np.asarray(r_D, dtype=float)
+    return (1.0 / x) * (1.0 - 1.1 / x) / (1.0 + 0.1 * (np.asarray(H_D, dtype=float) - 6.0) / x)
+
+
+def martin_srn_nusselt(Re: np.ndarray, Pr: np.ndarray, r_D: np.ndarray, H_D: np.ndarray) -> np.ndarray:
+    """Area-mean Nusselt number (on D) over the disc of radius r round a single round jet's stagnation point:
+    Nu = Pr^0.42 G(r/D, H/D) F_1(Re) (Martin 1977)."""
+    return np.asarray(Pr, dtype=float) ** MARTIN_PR_EXPONENT * martin_srn_geometry(r_D, H_D) \
+        * martin_reynolds_function(Re)
+
+
+def martin_arn_nusselt(Re: np.ndarray, Pr: np.ndarray, area_ratio: np.ndarray, H_D: np.ndarray) -> np.ndarray:
+    """Area-mean Nusselt number (on D) of an array of round nozzles, A_r = nozzle area / cell area:
+    Nu = Pr^0.42 K G F_2 with K = (1 + ((H/D)/(0.6/A_r^0.5))^6)^-0.05, G = 2 A_r^0.5 (1 - 2.2 A_r^0.5)/(1 + 0.2 (H/D - 6)
+    A_r^0.5), F_2 = 0.5 Re^(2/3) (Martin 1977)."""
+    s = np.sqrt(np.asarray(area_ratio, dtype=float))
+    H_D = np.asarray(H_D, dtype=float)
+    K = (1.0 + (H_D / (0.6 / s)) ** 6) ** -0.05
+    G = 2.0 * s * (1.0 - 2.2 * s) / (1.0 + 0.2 * (H_D - 6.0) * s)
+    return np.asarray(Pr, dtype=float) ** MARTIN_PR_EXPONENT * K * G * 0.5 * np.asarray(Re, dtype=float) ** (2.0 / 3.0)
+
+
+def martin_srn_local_shape(r_D: np.ndarray, H_D: np.ndarray) -> np.ndarray:
+    """Local Nusselt number of a single round jet over Pr^0.42 F_1(Re), as a function of r/D and H/D.
+
+    For r/D >= 2.5 it is the local value whose disc mean is Martin's G: Nu_loc = d(r^2 Nu_mean)/dr / (2 r), i.e.
+    (x^2 + 2 a x - 1.1 a) / (2 x (x + a)^2) with x = r/D, a = 0.1 (H/D - 6) (exact: its mean over any disc 2.5 <= r/D
+    reproduces G up to the constant of the inner zone). Inside, the measured radial shape of Goldstein et al. (1986),
+    533/(533 + 44 x^1.394), continued from Martin's value at r/D = 2.5 (stagnation point 1.30 times that value). H/D is
+    clamped to Martin's 2-12.
+    """
+    x = np.maximum(np.asarray(r_D, dtype=float), 0.0)
+    a = 0.1 * (np.clip(np.asarray(H_D, dtype=float), *MARTIN_H_D_RANGE) - 6.0)
+    x0 = MARTIN_SRN_R_D_RANGE[0]
+    xo = np.maximum(x, x0)
+    outer = (xo**2 + 2.0 * a * xo - 1.1 * a) / (2.0 * xo * (xo + a) ** 2)
+    at_x0 = (x0**2 + 2.0 * a * x0 - 1.1 * a) / (2.0 * x0 * (x0 + a) ** 2)
+
+    def goldstein(y: np.ndarray | float) -> np.ndarray:
+        return GOLDSTEIN_A / (GOLDSTEIN_A + GOLDSTEIN_B * np.asarray(y, dtype=float) ** GOLDSTEIN_N)
+
+    return np.where(x >= x0, outer, at_x0 * goldstein(x) / goldstein(x0))
+
+
+def goldstein_local_nusselt(Re: np.ndarray, r_D: np.ndarray, H_D: np.ndarray) -> np.ndarray:
+    """Goldstein, Behbahani & Heppelmann (1986) local Nusselt number of a round air jet (their fit to measurements,
+    Re 6.1e4-1.24e5, H/D 6-12): Nu = Re^0.76 (24 - |H/D - 7.75|)/(533 + 44 (r/D)^1.394)."""
+    return np.asarray(Re, dtype=float) ** 0.76 * (24.0 - np.abs(np.asarray(H_D, dtype=float) - 7.75)) \
+        / (GOLDSTEIN_A + GOLDSTEIN_B * np.asarray(r_D, dtype=float) ** GOLDSTEIN_N)
+
+
+# --- Boiling under forced flow: critical heat flux and the collapse of the vapour film -------------------------------
+# Y. Katto, C. Kurata, "Critical heat flux of saturated convective boiling on uniformly heated plates in a parallel
+# flow", Int. J. Multiphase Flow 6 (1980) 575: q_c/(G h_fg) = 0.186 (rho_v/rho_l)^0.559 (sigma rho_l/(G^2 l))^0.264,
+# G = rho_l U, l the heated length along the flow (fitted to water and R-113 data).
+KATTO_KURATA_C, KATTO_KURATA_DENSITY, KATTO_KURATA_WEBER = 0.186, 0.559, 0.264
+# P. J. Berenson, "Film-boiling heat transfer from a horizontal surface", J. Heat Transfer 83 (1961) 351: minimum
+# film boiling superheat dT_min = 0.127 (rho_v h_fg/k_v) [g drho/(rho_l + rho_v)]^(2/3) [sigma/(g drho)]^(1/2)
+# [mu_v/drho]^(1/3) (saturated liquid).
+BERENSON_C = 0.127
+
+
+def katto_kurata_critical_heat_flux(U_m_s: np.ndarray, length_m: np.ndarray, rho_l: float, rho_v: float,
+                                    h_fg_J_kg: float, sigma_N_m: float) -> np.ndarray:
+    """Saturated critical heat flux (W/m^2) of flow parallel to a heated plate of length l (Katto & Kurata 1980);
+    0 without flow."""
+    U = np.maximum(np.asarray(U_m_s, dtype=float), 0.0)
+    G = rho_l * U
+    l = np.maximum(np.asarray(length_m, dtype=float), 1e-6)
+    with np.errstate(divide="ignore"):
+        weber = np.where(G > 0.0, sigma_N_m * rho_l / (np.maximum(G, 1e-300) ** 2 * l), np.inf)
+    return np.where(G > 0.0, KATTO_KURATA_C * G * h_fg_J_kg * (rho_v / rho_l) ** KATTO_KURATA_DENSITY
+                    * np.minimum(weber, 1e300) ** KATTO_KURATA_WEBER, 0.0)
+
+
+def berenson_minimum_film_superheat(rho_l: float, rho_v: float, h_fg_J_kg: float, k_v: float, mu_v: float,
+                                    sigma_N_m: float) -> float:
+    """Berenson (1961) saturated minimum film boiling superheat T_MFB - T_b (K)."""
+    drho = rho_l - rho_v
+    return float(BERENSON_C * rho_v * h_fg_J_kg / k_v * (GRAVITY * drho / (rho_l + rho_v)) ** (2.0 / 3.0)
+                 * math.sqrt(sigma_N_m / (GRAVITY * drho)) * (mu_v / drho) ** (1.0 / 3.0))
+
+
+def subcooled_film_collapse_superheat(dT_min_sat_K: float, h_liquid_W_m2K: np.ndarray, subcooling_K: float,
+                                      collapse_resistance_m2K_W: float) -> np.ndarray:
+    """Wall superheat T_L - T_b at which a subcooled vapour film collapses:
+    dT_L = dT_min,sat + R_c h_l (T_b - T_oil).
+
+    A vapour film lives on the difference between the heat it conducts from the wall and the heat its liquid face
+    loses to the subcooled liquid, h_l (T_b - T_oil); with a film of conduction resistance R_c at its thinnest stable
+    thickness (R_c = delta_c/k_v) it collapses once that loss reaches the conduction dT_L/R_c. Linear in subcooling as
+    measured by Dhir & Purohit (Nucl. Eng. Des. 47 (1978) 49: dT_min = 101 + 8 dT_sub K, water on spheres) and rising
+    with the liquid-side coefficient h_l, i.e. with flow speed (faster liquid: earlier wetting, Tensi's wetting
+    kinematics; strong agitation removes the vapour stage, Totten/MacKenzie). dT_min,sat: Berenson (1961).
+    """
+    return dT_min_sat_K + collapse_resistance_m2K_W * np.asarray(h_liquid_W_m2K, dtype=float) * max(subcooling_K, 0.0)

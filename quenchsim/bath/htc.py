@@ -5,14 +5,18 @@ h = q/(T_s - T_oil) is stored; :class:`BoundaryHTC` interpolates it vectorised i
 
 Regimes (T_b boiling point, T_L Leidenfrost temperature, T_oil bath temperature):
 
-* Convection, T_s <= T_b: h_c = ((sum_i h_i^2)^(1/2))^3 + h_nat^3)^(1/3) -- each flow source i
-  (nozzle row, rotation) gives a local flat-plate coefficient h_i = k Nu_x(U_i x_i/nu, Pr)/x_i, combined
-  in quadrature, then blended with natural convection (Churchill 1977, n = 3). Liquid properties at
-  the film temperature (T_s + T_oil)/2, capped at (T_b + T_oil)/2 once the wall boils.
+* Convection, T_s <= T_b: h_c = ((sum_i h_i^2)^(1/2))^3 + h_nat^3)^(1/3) -- each nozzle row gives its impinging-jet
+  coefficient h_i = (k/D) Pr^0.42 F_1(U_0 D/nu) <l>_c (Martin 1977, circumferential mean of the local shape,
+  quenchsim.bath.flow), the rotation and bulk agitation a local flat-plate coefficient h_i = k Nu_x(U_i x_i/nu,
+  Pr)/x_i; combined in quadrature, then blended with natural convection (Churchill 1977, n = 3). Liquid properties
+  at the film temperature (T_s + T_oil)/2, capped at (T_b + T_oil)/2 once the wall boils. Martin's correlation is
+  fitted for 2e3 <= Re <= 4e5; below (the slow ID jets, Re ~ 300-2000 in the reference oil) it is continued with its
+  own laminar-like Re^0.5 form.
 * Nucleate boiling, T_b < T_s <= T_peak: q = h_c (T_s - T_oil) + min(q_Rohsenow(T_s - T_b), q_max) --
   forced convection and boiling added (Rohsenow 1952 superposition for subcooled flow boiling), the
-  boiling part capped by Zuber's critical flux raised for subcooling (Ivey & Morris 1962). T_peak is
-  where the Rohsenow flux meets q_max (closed form, Rohsenow q ~ dT_e^3).
+  boiling part capped by the critical flux q_max = max(Zuber pool, Katto & Kurata 1980 flow along the wall, each
+  flow source at its local speed and run length) raised for subcooling (Ivey & Morris 1962) -- the boiling peak rises with the local
+  speed and the subcooling. T_peak is where the Rohsenow flux meets q_max (closed form, Rohsenow q ~ dT_e^3).
 * Transition boiling, T_peak < T_s < T_L: q falls log-linearly in T_s from q(T_peak) to q_film(T_L); the
   region is at least ``transition_min_width_K`` wide (T_peak <= T_L - width), as measured still-oil curves
   climb from the film level to the peak over tens of kelvin, not at a point.
@@ -21,8 +25,11 @@ Regimes (T_b boiling point, T_L Leidenfrost temperature, T_oil bath temperature)
   quadrature like h_c; natural and forced blended n = 3), radiation
   through the film (Bromley's 3/4), and convection from the film's liquid face (at T_b) into the
   subcooled oil.
-* Agitation: T_L = T_L0 + dT_L U/(U + U_L) with U the local speed -- faster oil shortens the vapour
-  stage and strong flow removes it; higher U also raises h_c, the peak flux and the film flux.
+* Film collapse: T_L = T_b + dT_min,sat + R_c h_l (T_b - T_oil) (:func:`film_collapse_temperature`): the saturated
+  minimum film boiling superheat (Berenson 1961) raised in proportion to the heat the film's liquid face loses to the
+  subcooled oil, h_l the single-phase coefficient at the wall's boiling point -- faster oil and colder oil collapse
+  the vapour film earlier, strong flow removes it. R_c (the conduction resistance of the thinnest stable film) is the
+  oil file's declared calibration: still oil at 40 C on the ISO 9950 probe collapses at ``leidenfrost_still_C``.
 
 A still-bath curve (a library oil measured on the ISO 9950 probe, ``kind = "still_bath_curve"``) replaces the
 boiling curve above by the measured one, on which the local flow acts (:func:`still_curve_heat_flux`).
@@ -36,8 +43,12 @@ from typing import Any
 import numpy as np
 
 from quenchsim.bath.config import BathConfig
-from quenchsim.bath.correlations import (GRAVITY, bromley_film_htc, churchill_usagi, flat_plate_local_nusselt,
+from quenchsim.bath.correlations import (GRAVITY, MARTIN_PR_EXPONENT, berenson_minimum_film_superheat,
+                                         bromley_film_htc, churchill_usagi, flat_plate_local_nusselt,
                                          forced_film_htc, horizontal_plate_natural_nusselt, ivey_morris_factor,
+                                         katto_kurata_critical_heat_flux, martin_arn_nusselt,
+                                         martin_reynolds_function,
+                                         subcooled_film_collapse_superheat,
                                          radiation_htc, rohsenow_heat_flux, vertical_plate_natural_nusselt,
                                          zuber_critical_heat_flux)
 from quenchsim.bath.flow import LocalFlow, VERTICAL_NZ, local_flow
@@ -96,19 +107,22 @@ def _grid(T_low_C: float, T_high_C: float, step_K: float) -> np.ndarray:
     return T_low_C + step_K * np.arange(m)
 
 
-def leidenfrost_temperature(oil: OilProperties, U_m_s: np.ndarray) -> np.ndarray:
-    """T_L = T_L0 + dT_L U/(U + U_L): still-oil vapour-blanket collapse temperature raised by agitation."""
-    U = np.maximum(np.asarray(U_m_s, dtype=float), 0.0)
-    return oil.leidenfrost_still_C + oil.leidenfrost_agitation_rise_K * U / (U + oil.leidenfrost_velocity_scale_m_s)
-
-
 def convective_htc(oil: OilProperties, flow: LocalFlow, T_s: np.ndarray, T_oil: float) -> np.ndarray:
-    """Single-phase h_c (n, m) at wall temperatures T_s (m,) (capped at the boiling point for the film)."""
+    """Single-phase h_c (n, m) at wall temperatures T_s (m,) (capped at the boiling point for the film): impinging jets
+    (Martin), rotation and agitation (flat plate), natural convection (module docstring)."""
     T_wall = np.minimum(T_s, oil.boiling_point_C)[None, :]
     T_film = 0.5 * (T_wall + T_oil)
     nu, Pr, k = oil.kinematic_viscosity(T_film), oil.prandtl(T_film), oil.conductivity_W_mK
     h_forced_sq = np.zeros((flow.speed_m_s.shape[1], T_s.size))
-    for U, x in zip(flow.speed_m_s, flow.run_length_m):
+    n_rows = flow.jet_shape.shape[0]
+    for shape, U, D, area, H_D in zip(flow.jet_shape, flow.jet_speed_m_s, flow.jet_diameter_m, flow.jet_area_ratio,
+                                      flow.jet_H_D):
+        if U > 0.0 and np.any(shape > 0.0):
+            Re = U * D / nu
+            jet = k / D * (martin_arn_nusselt(Re, Pr, area, H_D) if area > 0.0
+                           else Pr**MARTIN_PR_EXPONENT * martin_reynolds_function(Re))        # (1, m)
+            h_forced_sq += (shape[:, None] * jet) ** 2
+    for U, x in zip(flow.speed_m_s[n_rows:], flow.run_length_m[n_rows:]):
         Re = U[:, None] * x[:, None] / nu
         h_forced_sq += (k * flat_plate_local_nusselt(Re, Pr) / x[:, None]) ** 2
     L = flow.natural_length_m[:, None]
@@ -117,6 +131,34 @@ def convective_htc(oil: OilProperties, flow: LocalFlow, T_s: np.ndarray, T_oil: 
     Nu_nat = np.where(vertical, vertical_plate_natural_nusselt(Pr, Gr),
                       horizontal_plate_natural_nusselt(Pr, Gr, (flow.orientation > 0)[:, None]))
     return churchill_usagi(np.sqrt(h_forced_sq), k * Nu_nat / L)
+
+
+def interface_htc(oil: OilProperties, flow: LocalFlow, T_oil: float) -> np.ndarray:
+    """Single-phase coefficient (n,) of a surface at the boiling point: that of a vapour film's liquid face."""
+    return convective_htc(oil, flow, np.array([oil.boiling_point_C]), T_oil)[:, 0]
+
+
+def critical_heat_flux(oil: OilProperties, flow: LocalFlow, T_oil: float) -> np.ndarray:
+    """Subcooled critical heat flux (n,) W/m^2: max(Zuber pool, Katto-Kurata flow along the wall for each flow source
+    at its local speed and run length) times the Ivey-Morris subcooling factor."""
+    Tb, rho_l = oil.boiling_point_C, oil.density_kg_m3
+    rho_vb = float(oil.vapour_density(Tb))
+    pool = zuber_critical_heat_flux(oil.surface_tension_N_m, oil.latent_heat_J_kg, rho_l, rho_vb, oil.zuber_K)
+    forced = np.max([katto_kurata_critical_heat_flux(U, x, rho_l, rho_vb, oil.latent_heat_J_kg, oil.surface_tension_N_m)
+                     for U, x in zip(flow.speed_m_s, flow.run_length_m)], axis=0, initial=0.0)
+    return np.maximum(pool, forced) * ivey_morris_factor(rho_l, rho_vb, oil.specific_heat_J_kgK, Tb - T_oil,
+                                                         oil.latent_heat_J_kg, oil.ivey_morris_C)
+
+
+def film_collapse_temperature(oil: OilProperties, flow: LocalFlow, T_oil: float) -> np.ndarray:
+    """Vapour-film collapse (Leidenfrost) temperature T_L (n,) C: T_b + Berenson's saturated minimum superheat
+    + R_c h_l (T_b - T_oil) (:func:`quenchsim.bath.correlations.subcooled_film_collapse_superheat`)."""
+    Tb = oil.boiling_point_C
+    dT_sat = berenson_minimum_film_superheat(oil.density_kg_m3, float(oil.vapour_density(Tb)), oil.latent_heat_J_kg,
+                                             oil.vapour_conductivity_W_mK, oil.vapour_viscosity_Pa_s,
+                                             oil.surface_tension_N_m)
+    return Tb + subcooled_film_collapse_superheat(dT_sat, interface_htc(oil, flow, T_oil), Tb - T_oil,
+                                                  oil.film_collapse_resistance_m2K_W)
 
 
 def oil_heat_flux(oil: OilProperties, flow: LocalFlow, T_s: np.ndarray, T_oil: float) -> tuple[np.ndarray, ...]:
@@ -128,14 +170,13 @@ def oil_heat_flux(oil: OilProperties, flow: LocalFlow, T_s: np.ndarray, T_oil: f
     # nucleate boiling, liquid properties at the boiling point, vapour at the boiling point
     rho_vb = float(oil.vapour_density(Tb))
     mu_b = float(oil.viscosity(Tb))
-    q_max = zuber_critical_heat_flux(oil.surface_tension_N_m, oil.latent_heat_J_kg, rho_l, rho_vb, oil.zuber_K) \
-        * ivey_morris_factor(rho_l, rho_vb, cp_l, Tb - T_oil, oil.latent_heat_J_kg, oil.ivey_morris_C)
+    q_max = critical_heat_flux(oil, flow, T_oil)                                # (n,)
     boil = dict(rho_l=rho_l, rho_v=rho_vb, mu_l=mu_b, k_l=oil.conductivity_W_mK, cp_l=cp_l,
                 h_fg_J_kg=oil.latent_heat_J_kg, sigma_N_m=oil.surface_tension_N_m, Csf=oil.rohsenow_Csf,
                 n=oil.rohsenow_n)
-    q_nb = np.minimum(rohsenow_heat_flux(T_s - Tb, **boil), q_max)
+    q_nb = np.minimum(rohsenow_heat_flux(T_s - Tb, **boil)[None, :], q_max[:, None])
     T_peak_nb = Tb + (q_max / float(rohsenow_heat_flux(1.0, **boil))) ** (1.0 / 3.0)
-    q_wet = q_conv + q_nb[None, :]
+    q_wet = q_conv + q_nb
     # film boiling, vapour properties at the film mean temperature
     dT_b = np.maximum(T_s - Tb, 1e-9)
     rho_v = oil.vapour_density(0.5 * (T_s + Tb))
@@ -151,7 +192,7 @@ def oil_heat_flux(oil: OilProperties, flow: LocalFlow, T_s: np.ndarray, T_oil: f
               + 0.75 * radiation_htc(T_s, T_oil, oil.surface_emissivity) * dT_oil
               + h_c_interface * (Tb - T_oil))
     # regimes
-    T_L = leidenfrost_temperature(oil, flow.velocity_m_s)
+    T_L = film_collapse_temperature(oil, flow, T_oil)
     T_peak = np.minimum(T_peak_nb, T_L - oil.transition_min_width_K)
     q_peak = _interp_rows(T_s, q_wet, T_peak)
     q_film_L = _interp_rows(T_s, q_film, T_L)
@@ -187,16 +228,16 @@ def still_curve_heat_flux(curve: ProbeQuenchant, liquid: OilProperties, flow: Lo
     h_0 is used as a function of the surface temperature, with the driving difference T_s - T_oil of this bath (a
     bath temperature other than the test's changes only that difference). With the local speed U (m/s):
 
-    * Vapour-film collapse: T_L = T_L0 + dT_L U/(U + U_L), the same law and constants (``leidenfrost_agitation_rise_K``,
-      ``leidenfrost_velocity_scale_m_s`` of the liquid file) as the boiling-curve model above -- agitation
-      shortens the vapour stage, strong agitation removes it (Totten/MacKenzie, "Understanding the cooling curve
-      test", Thermal Processing 2017; Grossmann H rises with agitation mainly through the boiling stages, ASM
-      Handbook Vol. 4). T_L0 and the peak T_p0 are read off h_0 (:func:`still_curve_features`).
+    * Vapour-film collapse: T_L = T_L0 + [T_L(flow) - T_L(still)] with the liquid's film-collapse law of the model
+      above (:func:`film_collapse_temperature`) -- agitation shortens the vapour stage, strong agitation removes it
+      (Totten/MacKenzie, "Understanding the cooling curve test", Thermal Processing 2017). T_L0 and the peak T_p0 are
+      read off h_0 (:func:`still_curve_features`).
     * Boiling: below T_p0 the still flux q_0(T_s) = h_0 (T_s - T_oil); from T_p0 to T_p0 + (T_L - T_L0) the wall
-      stays in nucleate boiling at the still curve's peak flux q_0(T_p0) (the critical flux caps nucleate boiling,
-      as Zuber's q_max in the model above); the still transition follows, shifted up by T_L - T_L0 and interpolated
-      log-linearly so that q meets the film flux q_0(T_L) at T_L; above T_L the still film flux q_0(T_s). With
-      U = 0 this is q_0 exactly.
+      stays in nucleate boiling at the still curve's peak flux q_0(T_p0) raised by the liquid's critical-flux ratio
+      q_max(flow)/q_max(still) (:func:`critical_heat_flux`); the still transition follows, shifted up by T_L - T_L0
+      and interpolated log-linearly so that q meets the film flux q_0(T_L) at T_L; above T_L the still film flux
+      q_0(T_s); the nucleate flux between T_b and T_p0 is raised by the same ratio, growing linearly from 1 at T_b
+      (continuous at T_p0). With U = 0 this is q_0 exactly.
     * Convection: the forced-convection increment h_c(U) - h_c(0) of the liquid (flat-plate and Churchill-Usagi
       blend of :func:`convective_htc`, liquid properties of ``liquid``) is added to every regime on the
       difference min(T_s, T_b) - T_oil (Rohsenow's superposition of forced convection and boiling; in film
@@ -213,19 +254,22 @@ def still_curve_heat_flux(curve: ProbeQuenchant, liquid: OilProperties, flow: Lo
     def q_of(T: Any) -> np.ndarray:
         return np.interp(T, T_s, q_still)
 
-    T_L = leidenfrost_temperature(liquid, flow.velocity_m_s) - liquid.leidenfrost_still_C + T_L0   # (n,)
+    still = flow.without_flow()
+    T_L = T_L0 + film_collapse_temperature(liquid, flow, T_oil) - film_collapse_temperature(liquid, still, T_oil)
     shift = (T_L - T_L0)[:, None]
     q_peak = float(curve.h(T_peak0)) * max(T_peak0 - T_oil, 1e-9)
+    q_peak_flow = (q_peak * critical_heat_flux(liquid, flow, T_oil) / critical_heat_flux(liquid, still, T_oil))[:, None]
     T = T_s[None, :]
     span = np.log(max(float(q_of(T_L0)), 1e-9) / q_peak)
     theta_still = np.log(np.maximum(q_of(np.clip(T - shift, T_peak0, T_L0)), 1e-9) / q_peak) \
         / (span if span != 0.0 else 1.0)                                       # 0 at the peak, 1 at the film
     q_film_L = curve.h(T_L)[:, None] * (T_L[:, None] - T_oil)
-    q_transition = q_peak * (q_film_L / q_peak) ** np.clip(theta_still, 0.0, 1.0)
-    q = np.where(T <= T_peak0, q_still[None, :],
-                 np.where(T <= T_peak0 + shift, q_peak, np.where(T < T_L[:, None], q_transition, q_still[None, :])))
-    still = LocalFlow(flow.source_names, np.zeros_like(flow.speed_m_s), flow.run_length_m, flow.natural_length_m,
-                      flow.orientation, flow.exposed_fraction)
+    q_transition = q_peak_flow * (q_film_L / q_peak_flow) ** np.clip(theta_still, 0.0, 1.0)
+    Tb = liquid.boiling_point_C
+    rise = 1.0 + (q_peak_flow / q_peak - 1.0) * np.clip((T - Tb) / max(T_peak0 - Tb, 1e-9), 0.0, 1.0)
+    q = np.where(T <= T_peak0, q_still[None, :] * rise,
+                 np.where(T <= T_peak0 + shift, q_peak_flow,
+                          np.where(T < T_L[:, None], q_transition, q_still[None, :])))
     h_c_increment = convective_htc(liquid, flow, T_s, T_oil) - convective_htc(liquid, still, T_s, T_oil)
     q = q + h_c_increment * (np.minimum(T_s, liquid.boiling_point_C) - T_oil)[None, :]
     return q, h_c_increment + curve.h(T_s)[None, :], T_L, np.full(T_L.shape, T_peak0)

@@ -53,3 +53,25 @@ def plot_velocity(results: dict[str, tuple[BoundaryPoints, BoundaryHTC]], title:
     fig.tight_layout()
     save(fig, path)
     return path
+
+
+def plot_jet_response(new: dict, old: dict | None, title: str, path: Path) -> Path:
+    """The bore's h against the ID jet speed and the OD's h against the OD jet speed at each surface temperature of
+    the response tables (:func:`quenchsim.bath.segments.jet_response`; new model solid, ``old`` dashed)."""
+    fig, axes = subplots(1, 2, figsize=(10.5, 4.2))
+    for ax, side, seg in ((axes[0], "id", "bore"), (axes[1], "od", "od")):
+        speeds = sorted(new[side], key=float)
+        temps = [k for k in new[side][speeds[0]][seg] if k != "T_L"]
+        for j, T in enumerate(temps):
+            v = np.array([float(s) for s in speeds]) * 1e-3
+            line, = ax.plot(v, [new[side][s][seg][T] for s in speeds], "-o", ms=3, color=f"C{j}", label=f"{T} C")
+            if old is not None and all(s in old[side] for s in speeds):
+                ax.plot(v, [old[side][s][seg][T] for s in speeds], "--", color=line.get_color(), lw=1.0)
+        ax.set_xlabel(f"{side.upper()} jet exit speed (m/s)")
+        ax.set_ylabel(f"{seg}: segment-mean HTC (W/m$^2$K)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, title="surface T (solid new, dashed old)", title_fontsize=7)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    save(fig, path)
+    return path

@@ -94,8 +94,7 @@ class OilProperties:
     rohsenow_n: float
     rohsenow_Csf: float
     leidenfrost_still_C: float
-    leidenfrost_agitation_rise_K: float
-    leidenfrost_velocity_scale_m_s: float
+    film_collapse_resistance_m2K_W: float
     transition_min_width_K: float
     bromley_C: float
     film_forced_C: float
@@ -143,7 +142,7 @@ _OIL_LIQUID = ("density_kg_m3", "specific_heat_J_kgK", "conductivity_W_mK", "exp
 _OIL_BOILING = ("boiling_point_C", "molar_mass_kg_mol", "latent_heat_J_kg", "surface_tension_N_m",
                 "vapour_conductivity_W_mK", "vapour_viscosity_Pa_s", "vapour_specific_heat_J_kgK", "zuber_K",
                 "ivey_morris_C", "rohsenow_n", "rohsenow_Csf", "leidenfrost_still_C",
-                "leidenfrost_agitation_rise_K", "leidenfrost_velocity_scale_m_s", "transition_min_width_K", "bromley_C", "film_forced_C",
+                "film_collapse_resistance_m2K_W", "transition_min_width_K", "bromley_C", "film_forced_C",
                 "surface_emissivity")
 
 

@@ -55,3 +55,24 @@ def perimeter_coordinate(points: BoundaryPoints) -> tuple[np.ndarray, list[tuple
             spans.append((name, offset, offset + float(length)))
             offset += float(length)
     return x, spans
+
+
+RESPONSE_T_C = (200.0, 400.0, 600.0, 800.0)
+"""Surface temperatures of the jet-response tables (C)."""
+
+
+def jet_response(profile: Profile, spec: dict[str, Any], side: str, speeds_mm_s: tuple[float, ...],
+                 T_C: tuple[float, ...] = RESPONSE_T_C, spacing_m: float = 2e-3) -> dict[str, Any]:
+    """Segment-mean h at the surface temperatures ``T_C`` and the segment-mean film-collapse temperature for each
+    ``<side>_jet_speed_mm_s`` in ``speeds_mm_s``, the rest of the ``[quench.bath]`` table ``spec`` as given:
+    {speed: {segment: {T: h, ..., "T_L": T_L}}} (speeds and temperatures as strings of their integer values)."""
+    from quenchsim.bath.config import parse_bath
+
+    out: dict[str, Any] = {}
+    for speed in speeds_mm_s:
+        _, htc = outline_htc(profile, parse_bath(dict(spec, **{f"{side}_jet_speed_mm_s": speed})), spacing_m)
+        out[str(int(speed))] = {
+            seg: {**{str(int(T)): float(np.mean([np.interp(T, htc.T_grid_C, htc.h_W_m2K[i]) for i in idx]))
+                     for T in T_C}, "T_L": float(np.mean(htc.leidenfrost_C[idx]))}
+            for seg, idx in segment_groups(htc).items()}
+    return out

@@ -4,7 +4,10 @@ A free input is named by a dotted path ``KIND.NAME.KEY...``:
 
 ``material.SUJ3.mechanics.plastic.yield_Pa.per_phase.austenite``
     ``KIND`` the data-file family (``material``: ``materials/NAME.toml`` with ``NAME.mechanics.toml`` merged
-    under ``mechanics``, :func:`quenchsim.materials.load_material`; ``quenchant``: ``materials/quenchants/NAME.toml``),
+    under ``mechanics``, :func:`quenchsim.materials.load_material`; ``quenchant``: ``materials/quenchants/NAME.toml``;
+    ``bath``: the bath model's declared flow constants ``materials/baths/NAME.toml`` named by ``quench.bath.constants``,
+    e.g. ``bath.jet_bath.flow.corner_carryover``; ``layout``: a nozzle layout ``materials/baths/NAME.toml`` named by
+    ``quench.bath.layout``, e.g. ``layout.reference_nozzles.nozzles.id.standoff_mm``),
     ``NAME`` the file (or ``.toml`` path stem), ``KEY...`` the dotted keys of an entry in it.
 
 The entry, or the nearest table above it, must carry a prior (:data:`quenchsim.mechanics.model.PRIOR_KEYS`):
@@ -15,7 +18,8 @@ are kept), with a log-uniform prior between its bounds: every band in the data f
 positive quantity, and a log-uniform prior is the one that treats x f and / f alike.
 
 A run with inputs set is an ordinary run: :func:`derived_files` writes the changed data files (complete,
-with their priors) and returns the case overrides (``material``, ``quench.bath.quenchant``) that point the
+with their priors) and returns the case overrides (``material``, ``quench.bath.quenchant``, ``quench.bath.constants``,
+``quench.bath.layout``) that point the
 case at them. No run code knows about calibration.
 """
 
@@ -46,11 +50,15 @@ class DataKind:
 
     case_field: str
     subdir: str
+    default: str | None = None
+    """The file a bath-model case reads when its field is not given (``quench.bath.constants``: jet_bath)."""
 
 
 KINDS: dict[str, DataKind] = {
     "material": DataKind(case_field="material", subdir=""),
     "quenchant": DataKind(case_field="quench.bath.quenchant", subdir="quenchants"),
+    "bath": DataKind(case_field="quench.bath.constants", subdir="baths", default="jet_bath"),
+    "layout": DataKind(case_field="quench.bath.layout", subdir="baths"),
 }
 
 
@@ -239,7 +247,14 @@ def derived_files(inputs: list[FreeInput], factors: list[float], folder: Path,
     return overrides
 
 
+def data_name(kind: str, case: Case) -> Any:
+    """The data file of family ``kind`` a case reads (its field's value, or the family's default for a bath-model
+    case), or None."""
+    spec = KINDS[kind]
+    return case.get(spec.case_field, spec.default if case.get("quench.htc_model") == "bath" else None)
+
+
 def used_by(inp: FreeInput, case: Case) -> bool:
     """Whether a case reads the input's data file."""
-    name = case.get(KINDS[inp.kind].case_field)
+    name = data_name(inp.kind, case)
     return isinstance(name, str) and Path(name).stem == inp.data_name

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from quenchsim.calibration.design import latin_hypercube
-from quenchsim.calibration.inputs import KINDS, FreeInput, declared_priors, free_input, used_by
+from quenchsim.calibration.inputs import KINDS, FreeInput, data_name, declared_priors, free_input, used_by
 from quenchsim.calibration.runs import quantity, request, run_requests
 from quenchsim.case import Case
 from quenchsim.errors import InputError
@@ -44,8 +44,8 @@ def _posterior_draws(folder: Path, n: int, seed: int) -> tuple[list[FreeInput], 
 
 def _prior_draws(case: Case, n: int, seed: int) -> tuple[list[FreeInput], np.ndarray, str]:
     inputs: list[FreeInput] = []
-    for kind, spec in KINDS.items():
-        name = case.get(spec.case_field)
+    for kind in KINDS:
+        name = data_name(kind, case)
         if isinstance(name, str):
             inputs += declared_priors(kind, name)
     u = latin_hypercube(len(inputs), n, seed)

@@ -18,6 +18,8 @@ ORBIT = ["gas-journal", "orbit", "--bearing-number", "1", "--load", "0.1", "--ma
 STABILITY = ["gas-journal", "stability", "--bearing-number", "1"]
 BIG_END = ["big-end", "cases/big_end_two_stroke.toml"]
 FREE_RUN = ["free-run", "no_such_pulses.csv"]
+LINEAR = ["gas-journal", "linear", "--bearing-number", "1", "--eccentricity", "0.4"]
+DOJ = ["doj", "--case", "3"]
 
 
 def with_option(base, option, value):
@@ -66,6 +68,9 @@ def with_option(base, option, value):
     (STABILITY, "--start-eccentricity", "1", "in (0, 1)"),
     (STABILITY, "--mass-range", "0", "> 0"),
     (STABILITY, "--max-iterations", "0", "an integer in [1, 10000]"),
+    (LINEAR, "--whirl-ratio", "0", "in (0, 10]"),
+    (DOJ, "--angle-deg", "30", "in [0, 25] deg"),
+    (DOJ, "--window-clearance-mm", "-0.5", "in [-0.1, 1] mm"),
     (BIG_END, "--revolutions", "-1", "in (0, 1e+06]"),
     (BIG_END, "--clearance-set", "0", "an integer in [1, 1000]"),
     (FREE_RUN, "--inertia", "-1", "in (0, 1e+06] kg m^2"),

@@ -11,6 +11,10 @@ VERBS: dict[str, str] = {
     "grease-life": "quenchsim.bearings.commands.grease_life",
     "kinematics": "quenchsim.bearings.commands.kinematics",
     "hertz": "quenchsim.bearings.commands.hertz",
+    "roller-clutch": "quenchsim.bearings.commands.roller_clutch",
+    "mode2": "quenchsim.bearings.commands.mode2",
+    "encoder": "quenchsim.bearings.commands.encoder",
     "free-run": "quenchsim.bearings.commands.free_run",
     "big-end": "quenchsim.bearings.commands.big_end",
+    "doj": "quenchsim.bearings.commands.doj",
 }

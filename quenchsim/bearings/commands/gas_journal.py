@@ -1,4 +1,4 @@
-"""`quenchsim bearings gas-journal static | orbit | stability | bench`: gas journal bearings.
+"""`quenchsim bearings gas-journal static | orbit | stability | linear | bench`: gas journal bearings.
 
 Parses arguments and calls quenchsim.bearings.gas_journal; returns one JSON-serialisable dict.
 """
@@ -12,6 +12,8 @@ import sys
 
 from quenchsim.bearings.gas_journal.benchmark import run_benchmark, sor_factor, warm_up
 from quenchsim.bearings.gas_journal.geometry import Bearing, Grooves, effective_ratios
+from quenchsim.bearings.gas_journal.linear import LinearisedFilm
+from quenchsim.bearings.gas_journal.linear_stability import linear_threshold
 from quenchsim.bearings.gas_journal.orbit import OrbitProgress, mass_from_parameter, orbit
 from quenchsim.bearings.gas_journal.reynolds import METHODS
 from quenchsim.bearings.gas_journal.stability import MASS_PARAMETER_RANGE, critical_mass_parameter
@@ -19,7 +21,7 @@ from quenchsim.bearings.gas_journal.static import static_characteristics
 from quenchsim.bearings.commands.ranges import Range
 from quenchsim.errors import InputError, require
 
-ACTIONS = ("static", "orbit", "stability", "bench")
+ACTIONS = ("static", "orbit", "stability", "linear", "bench")
 # stability: default budgets, so the search answers within 2 minutes on a 2-core machine (an orbit of
 # the grooved rotor A-1 at level 3 takes ~9 s, its search 9-10 orbits)
 STABILITY_MAX_TIME_S = 110.0
@@ -38,7 +40,8 @@ RANGES = {"bearing_number": Range(0.0, 1e6), "eccentricity": Range(0.0, 1.0, hig
           "mass": POSITIVE, "mass_parameter": POSITIVE, "duration": Range(0.0, 1e6, low_open=True),
           "start_eccentricity": Range(0.0, 1.0, low_open=True, high_open=True), "mass_range": POSITIVE,
           "rel_tol": Range(0.0, 10.0, low_open=True), "max_time_s": POSITIVE,
-          "max_iterations": Range(1, 10000, integer=True), "budget": POSITIVE}
+          "max_iterations": Range(1, 10000, integer=True), "budget": POSITIVE,
+          "whirl_ratio": Range(0.0, 10.0, low_open=True)}
 """Physical ranges of the numeric options (checked before any work, see :mod:`quenchsim.bearings.commands.ranges`):
 an eccentricity ratio below 1 (the journal inside its clearance), groove ratios within the land, SOR's
 over-relaxation in (0, 2)."""
@@ -46,10 +49,11 @@ over-relaxation in (0, 2)."""
 
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("action", choices=ACTIONS, help="static characteristics, orbit, stability threshold "
-                        "or solver benchmark")
+                        "(orbits), linearised coefficients and threshold, or solver benchmark")
     parser.add_argument("--bearing-number", type=float, nargs="+", required=True,
                         help="Lambda = 6 mu omega r^2 / (pa c^2) (bench: several)")
-    parser.add_argument("--eccentricity", type=float, help="static: eccentricity ratio e / c")
+    parser.add_argument("--eccentricity", type=float, help="static: eccentricity ratio e / c; stability, linear: "
+                        "the loaded operating point (stability default: unloaded rotor; linear default 0)")
     parser.add_argument("--displacement-angle", type=float, default=-90.0,
                         help="static: direction of the rotor displacement, deg (default -90)")
     parser.add_argument("--ld", type=float, default=1.0, help="length-to-diameter ratio L/D (default 1)")
@@ -80,6 +84,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--max-iterations", type=int, default=STABILITY_MAX_ORBITS,
                         help=f"stability: orbit budget (default {STABILITY_MAX_ORBITS})")
     parser.add_argument("--orbit-csv", default="gas_journal_orbit.csv", help="orbit: CSV output path")
+    parser.add_argument("--whirl-ratio", type=float, nargs="+", help="linear: whirl frequency / rotor speed of the "
+                        "coefficients (default: the threshold's)")
     parser.add_argument("--levels", type=int, nargs="+", default=[3, 4, 5, 6], help="bench: grid levels")
     parser.add_argument("--methods", choices=METHODS, nargs="+", default=list(METHODS), help="bench: methods")
     parser.add_argument("--budget", type=float, default=60.0,
@@ -120,6 +126,8 @@ def _static(args: argparse.Namespace) -> dict:
 
 def _orbit(args: argparse.Namespace) -> dict:
     lam = _single(args)
+    if args.eccentricity is not None:
+        raise InputError("--eccentricity", args.eccentricity, "not used by orbit: give --load (W / (pa L D))")
     if args.load is None:
         raise InputError("--load", None, "required for orbit (W / (pa L D))")
     if args.mass is None and args.mass_parameter is None:
@@ -150,7 +158,12 @@ def _finite(value: float | None) -> float | None:
 def _stability(args: argparse.Namespace) -> dict:
     low, high = args.mass_range
     require(low < high, "--mass-range", args.mass_range, "LO must be below HI")
+    if args.eccentricity is not None:
+        require(args.load is None, "--load", args.load, "not with --eccentricity (the eccentricity sets the load)")
+        require(0.0 < args.eccentricity < 0.9, "--eccentricity", args.eccentricity,
+                "must be in (0, 0.9) for stability (omit it for the unloaded rotor)")
     res = critical_mass_parameter(_bearing(args), _single(args), level=args.level or 3, load=args.load or 0.0,
+                                  eccentricity=args.eccentricity,
                                   start_eccentricity=args.start_eccentricity, duration=args.duration or 40.0,
                                   rel_tol=args.rel_tol, max_trials=args.max_iterations,
                                   mass_range=tuple(args.mass_range),
@@ -166,6 +179,28 @@ def _stability(args: argparse.Namespace) -> dict:
                        for m, s, g, w in res.trials]}
 
 
+def _linear(args: argparse.Namespace) -> dict:
+    lam = _single(args)
+    require(lam > 0.0, "--bearing-number", lam, "must be > 0 for linear")
+    eps = args.eccentricity or 0.0
+    film = LinearisedFilm(_bearing(args), lam, eps, level=args.level or 4)
+    threshold = linear_threshold(film)
+    load_angle = math.degrees(math.atan2(-film.force[1], -film.force[0])) if eps > 0.0 else 0.0
+    ratios = args.whirl_ratio or ([threshold.whirl_ratio] if math.isfinite(threshold.whirl_ratio) else [0.5])
+    coefficients = []
+    for gamma in ratios:
+        c = film.coefficients(gamma, load_angle)
+        coefficients.append({"whirl_ratio": gamma, "stiffness": c.stiffness.tolist(), "damping": c.damping.tolist()})
+    return {"load": film.load, "attitude_deg": _finite(film.attitude_deg), "eccentricity": eps,
+            "grid": [film.grid.n_xi + 1, film.grid.n_eta + 1],
+            "axes": "x along the load, y 90 deg ahead in the direction of rotation" if eps > 0.0 else "sleeve x, y",
+            "critical_mass": _finite(threshold.critical_mass),
+            "critical_mass_parameter": _finite(threshold.critical_mass_parameter),
+            "whirl_ratio": _finite(threshold.whirl_ratio),
+            "neutral_whirls": [{"whirl_ratio": g, "mass": m} for g, m in threshold.crossings],
+            "coefficients": coefficients}
+
+
 def _bench(args: argparse.Namespace) -> dict:
     for lam in args.bearing_number:
         require(lam >= 0.0, "--bearing-number", lam, "must be >= 0")
@@ -173,4 +208,5 @@ def _bench(args: argparse.Namespace) -> dict:
 
 
 def run(args: argparse.Namespace) -> dict:
-    return {"static": _static, "orbit": _orbit, "stability": _stability, "bench": _bench}[args.action](args)
+    return {"static": _static, "orbit": _orbit, "stability": _stability, "linear": _linear,
+            "bench": _bench}[args.action](args)

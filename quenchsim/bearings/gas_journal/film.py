@@ -76,6 +76,11 @@ class FilmGeometry:
         coef[..., 2:4, 2] = 0.0
         return coef
 
+    def volume_derivatives(self) -> np.ndarray:
+        """dV/da and dV/db of every control volume, shape (2,) + node shape (V is linear in (a, b))."""
+        base = self.volume((0.0, 0.0), FilmFrame())
+        return np.stack([self.volume((1.0, 0.0), FilmFrame()) - base, self.volume((0.0, 1.0), FilmFrame()) - base])
+
     def volume(self, displacement: tuple[float, float], frame: FilmFrame) -> np.ndarray:
         """Film volume of each control volume (sum of H * area over its quarter cells), node shape."""
         a, b = frame.grid_displacement(displacement)

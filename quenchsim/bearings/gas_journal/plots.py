@@ -98,3 +98,35 @@ def convergence(series: dict[str, tuple[np.ndarray, np.ndarray]], xlabel: str, y
     ax.legend(fontsize=8)
     ax.grid(True, which="both", alpha=0.3)
     return _save(fig, path)
+
+
+def dynamic_coefficients(gammas: np.ndarray, stiffness: np.ndarray, damping: np.ndarray, title: str,
+                         path: pathlib.Path) -> pathlib.Path:
+    """Stiffness and damping (shape (n, 2, 2)) against the whirl ratio, one line per entry xx, xy, yx, yy."""
+    fig, (a1, a2) = subplots(1, 2, figsize=(9, 3.6))
+    for i, j, name in ((0, 0, "xx"), (0, 1, "xy"), (1, 0, "yx"), (1, 1, "yy")):
+        a1.plot(gammas, stiffness[:, i, j], label=f"K_{name}")
+        a2.plot(gammas, damping[:, i, j], label=f"C_{name}")
+    for ax, name in ((a1, "K = k c / (pa L D)"), (a2, "C = d omega c / (pa L D)")):
+        ax.axhline(0.0, color="gray", lw=0.8)
+        ax.set_xlabel("whirl ratio (whirl frequency / rotor speed)")
+        ax.set_ylabel(name)
+        ax.legend(fontsize=7)
+    a1.set_title(title, fontsize=9)
+    return _save(fig, path)
+
+
+def growth_rates(panels: Sequence[tuple[str, np.ndarray, np.ndarray, Sequence[tuple[float, float]]]],
+                 path: pathlib.Path) -> pathlib.Path:
+    """Per panel: the linear growth rate against Mbar (line) and the orbits' measured growth rates (dots)."""
+    fig, axes = subplots(1, len(panels), figsize=(4.2 * len(panels), 3.6))
+    for ax, (title, mbar, growth, points) in zip(np.atleast_1d(axes), panels):
+        ax.semilogx(mbar, growth, "-", color="tab:blue", label="linear (Lund)")
+        finite = [(m, g) for m, g in points if np.isfinite(g)]
+        ax.semilogx([m for m, _ in finite], [g for _, g in finite], "o", color="tab:red", label="orbits")
+        ax.axhline(0.0, color="gray", lw=0.8)
+        ax.set_xlabel("mass parameter Mbar")
+        ax.set_ylabel("whirl growth rate (1 / T)")
+        ax.set_title(title, fontsize=9)
+        ax.legend(fontsize=7)
+    return _save(fig, path)

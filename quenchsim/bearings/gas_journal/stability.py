@@ -4,7 +4,13 @@ The critical mass parameter Mbar = m pa c^5 / (2 mu^2 L r^5) (reference section 
 separates rotors whose orbit about the equilibrium decays (stable) from those whose orbit grows into
 a whirl (half-frequency whirl onset). Each trial releases the rotor at rest from ``start_eccentricity``
 (vertical rotor: no external load unless given) and classifies the orbit by the growth rate of its
-radius (orbit.whirl_analysis).
+radius (orbit.whirl_analysis). With ``eccentricity`` the bearing is loaded instead: the load is the static
+film force at that eccentricity on the same grid, and each trial releases the rotor from rest 5 % of the
+eccentricity outward of that equilibrium, with the steady film of the held rotor -- the operating point a
+linearised analysis (linear_stability.py) is taken about. An unloaded rotor is a different problem: its only
+equilibrium is the concentric one, where a plain bearing's film carries no force in a half-frequency whirl
+(linear threshold Mbar = 0), and a rotor released at some eccentricity without load whirls there at half
+frequency instead of settling.
 
 The search assumes one threshold in ``mass_range``: stable below, unstable above (a heavier rotor
 whirls). It first runs the two ends of the range: when they do not bracket a threshold it stops there
@@ -31,8 +37,10 @@ from dataclasses import dataclass, field
 from quenchsim.bearings.gas_journal.geometry import Bearing
 from quenchsim.bearings.gas_journal.orbit import OrbitProgress, WallTimeExceeded, mass_from_parameter, orbit
 from quenchsim.bearings.gas_journal.reynolds import check_inputs
+from quenchsim.bearings.gas_journal.static import static_characteristics
 from quenchsim.errors import require
 
+START_OFFSET = 0.05  # loaded search: release 5 % of the eccentricity outward of the equilibrium
 MASS_PARAMETER_RANGE = (0.1, 100.0)  # default Mbar range (rotor A-1 at Lambda 1: threshold 9.1, see module docstring)
 
 # status of a search: a threshold, no threshold in range (three ways), or a budget ran out first
@@ -70,14 +78,32 @@ class _Budget(Exception):
         self.detail = detail
 
 
+def loaded_start(bearing: Bearing, bearing_number: float, eccentricity: float, level: int,
+                 offset: float = START_OFFSET) -> tuple[float, tuple[float, float], tuple[float, float]]:
+    """(load, equilibrium, start) of a rotor loaded downwards (-90 deg) to sit at ``eccentricity``: the static
+    film force at that eccentricity on grid ``level``, the equilibrium position (displaced by the attitude angle
+    from the load line) and the release position ``offset`` x eccentricity further out on the line of centres."""
+    probe = static_characteristics(bearing, bearing_number, eccentricity, -90.0, level)
+    angle = math.radians(-90.0 + probe.attitude_deg)
+    equilibrium = (eccentricity * math.cos(angle), eccentricity * math.sin(angle))
+    out = 1.0 + offset
+    return probe.load, equilibrium, (equilibrium[0] * out, equilibrium[1] * out)
+
+
 def critical_mass_parameter(bearing: Bearing, bearing_number: float, level: int = 3, load: float = 0.0,
                             start_eccentricity: float = 0.1, duration: float = 40.0, first_guess: float = 1.0,
                             rel_tol: float = 0.05, max_trials: int = 24, method: str = "multigrid",
                             mass_range: tuple[float, float] = MASS_PARAMETER_RANGE,
-                            max_time_s: float = math.inf, progress: bool = False) -> StabilityResult:
+                            max_time_s: float = math.inf, progress: bool = False,
+                            eccentricity: float | None = None) -> StabilityResult:
     """Critical Mbar at ``bearing_number`` by bisection on orbits (see module docstring); ``progress``
-    shows one tqdm bar per orbit on stderr (search stage, Mbar, dimensionless time, outcome)."""
+    shows one tqdm bar per orbit on stderr (search stage, Mbar, dimensionless time, outcome).
+    ``eccentricity`` (exclusive with ``load``): search the bearing loaded to sit at that eccentricity."""
     check_inputs(bearing_number, start_eccentricity)
+    if eccentricity is not None:
+        require(load == 0.0, "load", load, "must not be given with eccentricity (the eccentricity sets the load)")
+        require(math.isfinite(eccentricity) and 0.0 < eccentricity < 0.9, "eccentricity", eccentricity,
+                "must be in (0, 0.9) (the loaded operating point; 0 is the unloaded bearing)")
     require(bearing_number > 0.0, "bearing_number", bearing_number, "must be > 0 for a stability threshold")
     require(0.0 < rel_tol < 1.0, "rel_tol", rel_tol, "must be in (0, 1)")
     lo_end, hi_end = (float(m) for m in mass_range)
@@ -85,6 +111,11 @@ def critical_mass_parameter(bearing: Bearing, bearing_number: float, level: int 
     require(max_trials >= 2, "max_trials", max_trials, "must be >= 2 (the two ends of the mass range)")
     require(max_time_s > 0.0, "max_time_s", max_time_s, "must be > 0")
     started = time.perf_counter()
+    if eccentricity is None:
+        start, initial_film = (start_eccentricity, 0.0), "ambient"
+    else:
+        load, _, start = loaded_start(bearing, bearing_number, eccentricity, level)
+        initial_film = "steady"
     trials: list[tuple[float, bool, float, float]] = []
     stable_at: dict[float, bool] = {}
     whirl_near: dict[float, float] = {}
@@ -106,7 +137,7 @@ def critical_mass_parameter(bearing: Bearing, bearing_number: float, level: int 
         try:
             with OrbitProgress(duration, f"stability {stage} orbit {len(trials) + 1} Mbar {mbar:.4g}", progress) as bar:
                 res = orbit(bearing, bearing_number, load, mass_from_parameter(mbar, bearing_number), level=level,
-                            duration=duration, start=(start_eccentricity, 0.0), method=method,
+                            duration=duration, start=start, method=method, initial_film=initial_film,
                             stop_when_settled=False, on_step=bar.update, max_wall_time_s=left)
                 bar.outcome = res.outcome()
         except WallTimeExceeded as exc:
@@ -131,8 +162,11 @@ def critical_mass_parameter(bearing: Bearing, bearing_number: float, level: int 
         hi_stable = is_stable(hi_end, "range end")
         lo_stable = is_stable(lo_end, "range end")
         if not lo_stable and not hi_stable:
+            hint = ("; an unloaded rotor whirls about the concentric position, where a plain bearing's linear "
+                    "threshold is Mbar = 0: give the eccentricity of a loaded operating point"
+                    if load == 0.0 and (bearing.grooves is None or bearing.grooves.depth_ratio == 0.0) else "")
             return result(UNSTABLE_IN_RANGE, f"unstable for every mass in range: whirl at both ends of {span}, "
-                          f"no threshold to bisect ({tally()})", None, lo_end)
+                          f"no threshold to bisect ({tally()}){hint}", None, lo_end)
         if lo_stable and hi_stable:
             return result(STABLE_IN_RANGE, f"stable for every mass in range: both ends of {span} stable, "
                           f"no threshold to bisect ({tally()})", hi_end, None)
