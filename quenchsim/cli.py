@@ -1,4 +1,4 @@
-"""The `quenchsim` command line: `run | mesh | cct | bath | sweep | calibrate | report | validate | view | bearings`.
+"""The `quenchsim` command line: `run | mesh | cct | bath | sweep | optimise | calibrate | report | validate | view | bearings`.
 
 Commands are registered in ``COMMANDS`` (name -> module with ``configure(parser)`` and
 ``run(args) -> int``); each module is imported only when its command is used, so a slow
@@ -24,6 +24,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "material": ("quenchsim.commands.material", "material fit: steel kinetics from CCT / TTT / Jominy data"),
     "bath": ("quenchsim.commands.bath", "show the bath model: local velocities and HTC(T) per segment"),
     "sweep": ("quenchsim.commands.sweep", "run a parameter sweep on Dask distributed"),
+    "optimise": ("quenchsim.commands.optimise", "process design: the settings that meet constraints and minimise distortion"),
     "calibrate": ("quenchsim.commands.calibrate", "fit uncertain inputs to measurements: screening, surrogate, posterior"),
     "report": ("quenchsim.commands.report", "HTML/Markdown report of run or sweep directories"),
     "validate": ("quenchsim.commands.validate", "run the studies of validation/, write reports/, exit 1 on a missed target"),

@@ -39,6 +39,7 @@ from quenchsim.materials import load_material, thermal_properties, transforms
 from quenchsim.progress import CoolingProgress, RunProgress, StepState, film_collapse_temperatures
 from quenchsim.results import RunWriter, files
 from quenchsim.results.postprocess import NodalProjection, phase_statistics
+from quenchsim.results.shape import shape_change
 from quenchsim.results.summary import (FinalSection, hardness_summary, probe_times, residual_stress_summary,
                                        residual_traverse)
 from quenchsim.thermal import AxisymmetricP2, ImmersionHTC, SurfaceTemperatureHTC, ThermalSolver, parse_htc_table
@@ -726,10 +727,12 @@ class QuenchRun:
         after = mechanics.ring_dimensions(self.section.mesh, self.mech.displacement_m)
         r_mm, hoop, axial = residual_traverse(final, self.mech.nodal_fields())
         self.writer.residual_traverse(r_mm, hoop, axial)
-        self.writer.outline(mechanics.section_outline(self.before_mesh) / MM, final.outline_m / MM)
+        before_outline_mm = mechanics.section_outline(self.before_mesh) / MM
+        self.writer.outline(before_outline_mm, final.outline_m / MM)
         budget = mechanics.distortion_budget(self.mech, self.before_mesh, self.thermal.T_qp, self.thermal.fractions(),
                                              self.mech_model.annealed_free_strain)
         return {"dimensions_mm": mechanics.dimension_change(before, after),
+                "shape_mm": shape_change(before_outline_mm, final.outline_m / MM),
                 "distortion_budget_mm": budget,
                 "residual_stress_MPa": residual_stress_summary(hoop, axial)}
 

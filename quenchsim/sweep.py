@@ -59,7 +59,7 @@ from quenchsim.results import RunWriter, files, read_summary
 RESULTS_CSV = "results.csv"
 SWEEP_JSON = "sweep.json"
 CASE_JSON = "sweep_case.json"
-KEY_OUTPUTS = ("probes", "hardness", "phases_final", "dimensions_mm", "residual_stress_MPa", "solver")
+KEY_OUTPUTS = ("probes", "hardness", "phases_final", "dimensions_mm", "shape_mm", "residual_stress_MPa", "solver")
 """Top-level tables of summary.json whose numeric leaves become result columns."""
 SOLVER_KEYS = ("wall_time_s", "steps", "dofs")
 log = logging.getLogger("quenchsim")
@@ -231,6 +231,8 @@ def flatten_summary(summary: dict[str, Any]) -> dict[str, Any]:
             if top == "phases_final" and not key.endswith(".mean"):
                 continue
             if top == "solver" and key.split(".")[-1] not in SOLVER_KEYS:
+                continue
+            if top == "shape_mm" and key.split(".")[1] not in ("after", "change"):
                 continue
             if value is None or isinstance(value, bool) or isinstance(value, (int, float)):
                 out[key] = value
@@ -459,17 +461,23 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, scheduler: str | None = None
 
 def run_on_dask(args: dict[str, tuple[Any, ...]], scheduler: str | None, workers: int,
                 record: Callable[[str, dict[str, Any]], None]) -> bool:
-    """Submit every case (``name -> run_point arguments``, one base case table shared by all) and record the
-    results as they arrive; True when interrupted by Ctrl-C. Also the calibration's design runner."""
+    """Submit every case (``name -> run_point arguments``) and record the results as they arrive; True when
+    interrupted by Ctrl-C. Also the calibration's and the design study's runner."""
     from dask.distributed import as_completed
 
     client, cluster = _client(scheduler, workers)
     futures = {}
     try:
-        # the base case table is the same for every case: ship it to the workers once
-        raw = client.scatter(next(iter(args.values()))[0], broadcast=True)
-        for name, (_, *rest) in args.items():
-            futures[client.submit(run_point, raw, *rest, key=f"quenchsim-{name}-{time.time_ns()}", pure=False)] = name
+        # a base case table shared by several cases (a sweep's) is shipped to the workers once; scattered inside a
+        # list: Dask scatters a dict value by value under the dict's own keys ("quench", "geometry", ...), so two
+        # tables on one scheduler would share those keys and every case would run the first table's values
+        shipped: dict[str, Any] = {}
+        for name, (raw_case, *rest) in args.items():
+            text = json.dumps(raw_case, sort_keys=True, default=str)
+            if text not in shipped:
+                shipped[text] = client.scatter([raw_case], broadcast=True)[0]
+            futures[client.submit(run_point, shipped[text], *rest, key=f"quenchsim-{name}-{time.time_ns()}",
+                                  pure=False)] = name
         for future in as_completed(futures):
             try:
                 result = future.result()

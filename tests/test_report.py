@@ -84,6 +84,12 @@ def test_run_report_shows_every_plot_and_the_dimension_table(dirs, report):
         assert abs(sum(part[key] for part in budget["parts"].values()) - budget["total"][key]) < 2e-3
     row = re.search(r"<tr><td>total \(after - before\)</td>(.*?)</tr>", html).group(1)
     assert float(re.findall(r"<td>([^<]*)</td>", row)[0]) == pytest.approx(budget["total"]["id"], rel=1e-3, abs=1e-6)
+    # shape measures: in summary.json (the bore at mid-width is the caliper's ID) and in the report's table
+    shape = summary["shape_mm"]
+    assert shape["after"]["bore_at_mid"] == pytest.approx(summary["dimensions_mm"]["after"]["id"], abs=1e-6)
+    for key in ("bore_crown", "od_taper", "top_face_dish"):
+        row = re.search(rf"<tr><td>{key}</td>(.*?)</tr>", html).group(1)
+        assert float(re.findall(r"<td>([^<]*)</td>", row)[2]) == pytest.approx(shape["change"][key], rel=1e-3, abs=1e-9)
     # the Markdown twin links the same plots, written as files
     md = written[1].read_text()
     links = re.findall(r"!\[([^\]]+)\]\(([^)]+)\)", md)

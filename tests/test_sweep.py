@@ -297,3 +297,24 @@ def test_an_unreachable_scheduler_is_one_line(tmp_path, monkeypatch):
     address = f"tcp://127.0.0.1:{_free_port()}"        # nothing listens there
     with pytest.raises(InputError, match=r"--scheduler = 'tcp://127\.0\.0\.1:\d+': no Dask scheduler answered within 1 s"):
         run_sweep(spec, tmp_path, scheduler=address, progress=False)
+
+
+def test_run_on_dask_keeps_different_case_tables_apart(monkeypatch):
+    """Two base case tables in one call, and another in a second call on the same scheduler (a design study's next
+    batch): each case runs its own table (a scattered dict shares its keys with every other dict on the scheduler)."""
+    from dask.distributed import LocalCluster
+
+    from quenchsim import sweep
+
+    monkeypatch.setattr(sweep, "run_point", lambda raw, *rest: {"status": "ok", "error": None,
+                                                               "summary": {"t": raw["quench"]["time_s"]}})
+    seen: dict = {}
+    cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0")
+    try:
+        record = lambda name, result: seen.__setitem__(name, result["summary"]["t"])  # noqa: E731
+        sweep.run_on_dask({"a": ({"quench": {"time_s": 1.0}}, None, None, {}, "a"),
+                           "b": ({"quench": {"time_s": 2.0}}, None, None, {}, "b")}, cluster.scheduler_address, 0, record)
+        sweep.run_on_dask({"c": ({"quench": {"time_s": 3.0}}, None, None, {}, "c")}, cluster.scheduler_address, 0, record)
+    finally:
+        cluster.close()
+    assert seen == {"a": 1.0, "b": 2.0, "c": 3.0}

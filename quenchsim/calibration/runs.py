@@ -67,9 +67,10 @@ def _arguments(req: RunRequest, folder: Path) -> tuple[dict[str, Any], str | Non
 
 
 def run_requests(requests: Sequence[RunRequest], runs_dir: Path, workers: int = 2, progress: bool = True,
-                 max_runs: int | None = None, desc: str = "runs") -> DesignOutcome:
+                 max_runs: int | None = None, desc: str = "runs", scheduler: str | None = None) -> DesignOutcome:
     """Run every request not yet finished in ``runs_dir`` (at most ``max_runs`` new ones) and return the
-    summaries; failed runs are recorded (their folders keep what they wrote), never raised."""
+    summaries; failed runs are recorded (their folders keep what they wrote), never raised. ``scheduler``: the
+    address of a running Dask scheduler (a cluster kept over many calls) instead of a LocalCluster per call."""
     runs_dir.mkdir(parents=True, exist_ok=True)
     unique: dict[str, RunRequest] = {}
     for req in requests:
@@ -99,15 +100,11 @@ def run_requests(requests: Sequence[RunRequest], runs_dir: Path, workers: int = 
         bar.set_postfix_str(f"{len(failed)} failed" if failed else "")
 
     try:
-        groups: dict[str, dict[str, tuple[Any, ...]]] = {}
-        for name, args in todo.items():   # run_on_dask ships one base case table per call
-            groups.setdefault(json.dumps(args[0], sort_keys=True, default=str), {})[name] = args
-        for group in groups.values():
-            if workers == 0:
-                for name, args in group.items():
-                    record(name, run_point(*args))
-            elif run_on_dask(group, None, workers, record):
-                raise KeyboardInterrupt
+        if workers == 0 and not scheduler:
+            for name, args in todo.items():
+                record(name, run_point(*args))
+        elif todo and run_on_dask(todo, scheduler, workers, record):
+            raise KeyboardInterrupt
     finally:
         bar.close()
     for name in pending:

@@ -104,4 +104,22 @@ def summary_table(s: dict, out: Path) -> str:
         rows.append(f"{'dimension (mm)':<16}{'before':>10}{'after':>10}{'change':>10}")
         for k in d["change"]:
             rows.append(f"{k:<16}{d['before'][k]:>10.3f}{d['after'][k]:>10.3f}{d['change'][k]:>+10.3f}")
+    if "shape_mm" in s:
+        rows += shape_rows(s["shape_mm"])
     return "\n".join(rows)
+
+
+SHAPE_ROWS = (("bore_taper", "bore taper"), ("od_taper", "OD taper"), ("bore_crown", "bore crown"),
+              ("od_crown", "OD crown"), ("top_face_dish", "top face dish"), ("bottom_face_dish", "bottom dish"))
+
+
+def shape_rows(shape: dict) -> list[str]:
+    """The inspector's shape measures (summary.json ``shape_mm``) as table rows: before, after, change (mm)."""
+    g = shape["gauge"]["heights_before_mm"]
+    rows = [f"{'shape (mm)':<16}{'before':>10}{'after':>10}{'change':>10}   gauge heights "
+            f"{g['bottom']:.1f} / {g['mid']:.1f} / {g['top']:.1f} mm, taper top - bottom, crown mid - ends"]
+    for key, label in SHAPE_ROWS:
+        b, a, c = (shape[part][key] for part in ("before", "after", "change"))
+        if c is not None:
+            rows.append(f"{label:<16}{b:>10.4f}{a:>10.4f}{c:>+10.4f}")
+    return rows

@@ -27,6 +27,8 @@ from quenchsim.report.report_data import PHASES, is_sweep_dir, measured_dimensio
 from quenchsim.results import RunResults, load
 
 RESPONSE_OUTPUTS = ("hardness.depth_mm.", "hardness.core_HRC", "hardness.surface_HRC.", "dimensions_mm.change.",
+                    "shape_mm.change.bore_crown", "shape_mm.change.od_crown", "shape_mm.change.bore_taper",
+                    "shape_mm.change.od_taper", "shape_mm.change.top_face_dish",
                     "residual_stress_MPa.hoop.", "phases_final.martensite.mean", "phases_final.bainite.mean",
                     "phases_final.austenite.mean", "probes.*.t8_5_s", "probes.*.t_to_300C_s", "solver.wall_time_s")
 """Result columns plotted against the swept inputs, in this order (``*`` matches a probe name)."""
@@ -159,6 +161,7 @@ def _dimension_table(run: RunResults, missing: list[str]) -> list[Item]:
         source = (run.case or {}).get("measured", {}).get("source")
         if source:
             items.append(Item("text", "Measurements", text=f"Measured: {source}."))
+    items += _shape_table(run)
     budget = (run.summary or {}).get("distortion_budget_mm")
     if budget:
         items.append(Item("image", "Distortion budget: what the dimension change is made of",
@@ -179,6 +182,23 @@ def _dimension_table(run: RunResults, missing: list[str]) -> list[Item]:
         items.append(Item("table", "Residual stress (MPa)", header=["component", *locations],
                           rows=[[c, *[v.get(k) for k in locations]] for c, v in rs.items()]))
     return items
+
+
+def _shape_table(run: RunResults) -> list[Item]:
+    """The inspector's shape measures (summary.json ``shape_mm``): before, after and change, with the gauge."""
+    shape = (run.summary or {}).get("shape_mm")
+    if not shape:
+        return []
+    g = shape["gauge"]
+    text = (f"Read on the outline as a gauge would: diameters at {fmt(g['heights_before_mm']['bottom'])} / "
+            f"{fmt(g['heights_before_mm']['mid'])} / {fmt(g['heights_before_mm']['top'])} mm above the bottom face "
+            f"({fmt(g['inset_mm'])} mm, a fraction {fmt(g['inset_fraction'])} of the width, in from each face); taper: "
+            "top minus bottom; crown: mid-width minus the mean of the ends (positive: a barrel); straightness: the "
+            "largest deviation of the diameter from the line through the ends; face dish: height at the OD side "
+            "minus at the bore side. The distortion x10 plot above shows the same outline.")
+    return [Item("text", "Shape measures", text=text),
+            Item("table", "Shape measures (mm)", header=["measure", "before", "after", "change"],
+                 rows=[[k, shape["before"][k], shape["after"][k], shape["change"][k]] for k in shape["change"]])]
 
 
 def _uncertainty_table(run: RunResults) -> list[Item]:

@@ -76,7 +76,7 @@ def run(workdir: Path) -> dict[str, Any]:
             "HRC58_depth_bore_mm": s["hardness"]["depth_mm"]["HRC58_bore_mid"],
             "HRC58_depth_od_mm": s["hardness"]["depth_mm"]["HRC58_od_mid"],
             "core_HRC": s["hardness"]["core_HRC"], "dimensions_mm": s.get("dimensions_mm"),
-            "distortion_budget_mm": s.get("distortion_budget_mm"),
+            "distortion_budget_mm": s.get("distortion_budget_mm"), "shape_mm": s.get("shape_mm"),
             "phases_final": s.get("phases_final"), "residual_stress_MPa": s.get("residual_stress_MPa")}
     plots = [cooling_plot(runs[c], f"A{c}", f"case A, condition {c}", workdir) for c in CONDITIONS]
     _png(workdir / "validation_A1_maps.png", report_plots.field_maps(
@@ -129,6 +129,30 @@ def budget_table(cond: dict[str, Any], dims: tuple[str, str, str]) -> list[str]:
     return md + [""]
 
 
+SHAPE_COLUMNS = (("bore_taper", "bore taper"), ("bore_crown", "bore crown"), ("bore_straightness", "bore straightness"),
+                 ("od_taper", "OD taper"), ("od_crown", "OD crown"), ("top_face_dish", "top face dish"),
+                 ("bottom_face_dish", "bottom face dish"))
+
+
+def shape_table(cond: dict[str, Any], bore: str = "bore") -> list[str]:
+    """The inspector's shape measures of every condition (summary.json ``shape_mm``): the change after - before, mm."""
+    first = next((s["shape_mm"] for s in cond.values() if s.get("shape_mm")), None)
+    if first is None:
+        return []
+    g = first["gauge"]["heights_before_mm"]
+    md = [f"Read on the final outline as a gauge would (quenchsim/results/shape.py): diameters at {g['bottom']:.1f} / "
+          f"{g['mid']:.1f} / {g['top']:.1f} mm above the bottom face; taper = top - bottom, crown = mid-width - mean of "
+          "the ends (positive: a barrel), straightness = largest deviation from the line through the ends, face dish = "
+          "height at the OD side - at the bore side. Change after - before, mm:", "",
+          "| condition | " + " | ".join(label.replace("bore", bore) for _, label in SHAPE_COLUMNS) + " |",
+          "|---|" + "---|" * len(SHAPE_COLUMNS)]
+    for c, s in cond.items():
+        change = (s.get("shape_mm") or {}).get("change")
+        if change:
+            md.append(f"| {c} | " + " | ".join(f"{change[k]:+.4f}" for k, _ in SHAPE_COLUMNS) + " |")
+    return md + [""]
+
+
 def dims_row(label: str, d: dict[str, Any] | None) -> str:
     """A table row: ID/OD/width after and their changes (mm)."""
     if not d:
@@ -160,7 +184,8 @@ def page(metrics: dict[str, Any]) -> str:
            "Measured after quench and the report's own simulation: targets table at the end.", "",
            "| | ID after | OD after | width after | ID change | OD change | width change |", "|---|---|---|---|---|---|---|"]
     md += [dims_row(f"quenchsim condition {c}", s["dimensions_mm"]) for c, s in cond.items()]
-    md += ["", "### Old versus new", ""] + old_versus_new(model_history(__file__), cond, ("ID", "OD", "width"))
+    md += ["", "### Shape", ""] + shape_table(cond)
+    md += ["### Old versus new", ""] + old_versus_new(model_history(__file__), cond, ("ID", "OD", "width"))
     md += ["### Distortion budget: what makes the ring grow or shrink", "",
            "Each strain part applied alone to the section (final moduli, the run's supports); the parts add up to the "
            "dimension change (`sum - total`). Method: quenchsim/mechanics/budget.py, README \"What a run writes\".", ""]

@@ -33,7 +33,8 @@ def run(workdir: Path) -> dict[str, Any]:
             "HRC58_depth_od_mm": s["hardness"]["depth_mm"]["HRC58_od_mid"], "core_HRC": s["hardness"]["core_HRC"],
             "martensite_mean": s["phases_final"]["martensite"]["mean"], "dimensions_mm": s.get("dimensions_mm"),
             "hoop_MPa": s.get("residual_stress_MPa", {}).get("hoop", {}), "phases_final": s.get("phases_final"),
-            "residual_stress_MPa": s.get("residual_stress_MPa"), "distortion_budget_mm": s.get("distortion_budget_mm")}
+            "residual_stress_MPa": s.get("residual_stress_MPa"), "distortion_budget_mm": s.get("distortion_budget_mm"),
+            "shape_mm": s.get("shape_mm")}
         metrics["plots_md"][c] = [a.cooling_plot(r, f"B{c}", f"case B, condition {c}", workdir), "",
                                   *a.mechanics_plots(r, f"B{c}", f"case B, condition {c}", workdir)]
     return metrics
@@ -53,7 +54,8 @@ def page(metrics: dict[str, Any]) -> str:
                   f"{s['martensite_mean']:.3f} | "
                   + (" / ".join(f"{hoop[k]:.0f}" for k in ("od_surface_mid", "bore_surface_mid", "core_mid")) if hoop else "-")
                   + " |")
-    md += ["", "### Old versus new", ""] + a.old_versus_new(a.model_history(__file__), cond, ("raceway", "OD", "width"))
+    md += ["", "### Shape of the raceway, the OD and the faces", ""] + a.shape_table(cond, bore="raceway")
+    md += ["### Old versus new", ""] + a.old_versus_new(a.model_history(__file__), cond, ("raceway", "OD", "width"))
     md += ["### Distortion budget", ""] + a.budget_table(cond, ("raceway", "OD", "width"))
     for c in cond:
         md += metrics["plots_md"][c]
