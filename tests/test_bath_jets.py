@@ -104,15 +104,17 @@ def test_katto_kurata_formula_and_hand_value():
 
 
 def test_berenson_formula_and_oil_hand_value():
-    # dT_min = 0.127 (rho_v h_fg/k_v) [g drho/(rho_l+rho_v)]^(2/3) [sigma/(g drho)]^(1/2) [mu_v/drho]^(1/3), with the
-    # reference oil's light end (rho_v 5.59 at 343 C): 0.127 x 3.19e7 x 4.54 x 1.09e-3 x 2.27e-3 = 45.6 K
+    # dT_min = 0.127 (rho_v h_fg/k_v) [g drho/(rho_l+rho_v)]^(2/3) [sigma/(g drho)]^(1/2) [mu_v/(g drho)]^(1/3)
+    # (Berenson 1961; units s K/m2 . m^(2/3)/s^(4/3) . m . (m s)^(1/3) = K), with the reference oil's light end
+    # (rho_v 5.59 at 343 C): 0.127 x 3.19e7 x 4.54 x 1.09e-3 x 1.06e-3 = 21.3 K. (The g of the last bracket was
+    # missing until 2026-11: 45.6 K, a non-dimensional result.)
     rho_l, rho_v, hfg, kv, mu_v, sigma = 860.0, 5.59, 2.0e5, 0.035, 1.0e-5, 0.010
     drho = rho_l - rho_v
     expected = 0.127 * rho_v * hfg / kv * (G * drho / (rho_l + rho_v)) ** (2 / 3) * (sigma / (G * drho)) ** 0.5 \
-        * (mu_v / drho) ** (1 / 3)
+        * (mu_v / (G * drho)) ** (1 / 3)
     got = c.berenson_minimum_film_superheat(rho_l, rho_v, hfg, kv, mu_v, sigma)
     assert got == pytest.approx(expected, rel=1e-12)
-    assert got == pytest.approx(45.6, rel=0.01)
+    assert got == pytest.approx(21.3, rel=0.01)
 
 
 def test_subcooled_collapse_is_linear_in_subcooling_like_dhir_purohit():

@@ -235,7 +235,7 @@ def goldstein_local_nusselt(Re: np.ndarray, r_D: np.ndarray, H_D: np.ndarray) ->
 KATTO_KURATA_C, KATTO_KURATA_DENSITY, KATTO_KURATA_WEBER = 0.186, 0.559, 0.264
 # P. J. Berenson, "Film-boiling heat transfer from a horizontal surface", J. Heat Transfer 83 (1961) 351: minimum
 # film boiling superheat dT_min = 0.127 (rho_v h_fg/k_v) [g drho/(rho_l + rho_v)]^(2/3) [sigma/(g drho)]^(1/2)
-# [mu_v/drho]^(1/3) (saturated liquid).
+# [mu_v/(g drho)]^(1/3) (saturated liquid; every bracket is dimensional, the product is in K).
 BERENSON_C = 0.127
 
 
@@ -257,7 +257,7 @@ def berenson_minimum_film_superheat(rho_l: float, rho_v: float, h_fg_J_kg: float
     """Berenson (1961) saturated minimum film boiling superheat T_MFB - T_b (K)."""
     drho = rho_l - rho_v
     return float(BERENSON_C * rho_v * h_fg_J_kg / k_v * (GRAVITY * drho / (rho_l + rho_v)) ** (2.0 / 3.0)
-                 * math.sqrt(sigma_N_m / (GRAVITY * drho)) * (mu_v / drho) ** (1.0 / 3.0))
+                 * math.sqrt(sigma_N_m / (GRAVITY * drho)) * (mu_v / (GRAVITY * drho)) ** (1.0 / 3.0))
 
 
 def subcooled_film_collapse_superheat(dT_min_sat_K: float, h_liquid_W_m2K: np.ndarray, subcooling_K: float,

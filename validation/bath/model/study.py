@@ -302,7 +302,7 @@ def run(workdir: Path) -> dict[str, Any]:
            "ring turns past the fixed jets); where the rows on a face form an array in Martin's range (the reference OD "
            "rows, A_r = 0.011) the cell mean is Martin's array correlation. Boiling: the critical flux is the larger of "
            "Zuber's and Katto & Kurata's flow-boiling value at the local speed and run length (1980), raised for "
-           "subcooling (Ivey & Morris); the vapour film collapses at T_b + 45.6 K (Berenson 1961) + R_c h_l (T_b - T_oil), "
+           "subcooling (Ivey & Morris); the vapour film collapses at T_b + 21.3 K (Berenson 1961) + R_c h_l (T_b - T_oil), "
            "h_l the single-phase coefficient of the film's liquid face: faster and colder oil collapse it earlier. "
            "The bore flow is the ID jets' wall jets (their momentum along the bore); the rotation acts as the part's "
            "slip past its oil, of which the oil column in the bore follows half. Equations, ranges and sources: "
