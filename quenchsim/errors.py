@@ -29,5 +29,12 @@ def require(condition: bool, field: str, value: Any, allowed: str) -> None:
         raise InputError(field, value, allowed)
 
 
+def require_known_keys(table: Any, allowed: tuple[str, ...], where: str) -> None:
+    """Raise :class:`InputError` for the first key of ``table`` (the input's ``[where]`` table) not in ``allowed``:
+    a misspelt key is an error, never ignored."""
+    for key in table:
+        require(key in allowed, f"{where}.{key}", table[key], f"unknown key; [{where}] takes {', '.join(allowed)}")
+
+
 class RunInterrupted(QuenchsimError):
     """A run stopped by Ctrl-C or SIGTERM; what it had computed is in its folder (status "interrupted")."""

@@ -11,10 +11,11 @@ A study is a folder ``validation/<area>/<study>/`` (contract in validation/READM
 * ``study.py`` with ``TITLE``, ``SLOW`` and ``run(workdir) -> dict`` (named, JSON-serialisable metrics;
   plots as PNG files in ``workdir``), optionally ``page(metrics) -> str`` (the Markdown body).
 
-:func:`run_study` runs a study unless its metrics are cached with the same fingerprint (the package's
-code and data, ``cases/`` and the study folder: :func:`study_fingerprint`), writes
-``<reports>/<area>_<study>.md`` (body + target table), ``<area>_<study>.json`` (the metrics and their
-fingerprint, which ``quenchsim validate --check`` re-evaluates) and copies the study's PNGs.
+:func:`run_study` runs a study unless its metrics are cached with the same fingerprint (the code and data the
+study depends on: the quenchsim modules it imports, its folder, the case files it names, package and material
+data: :func:`study_inputs`), writes ``<reports>/<area>_<study>.md`` (body + target table),
+``<area>_<study>.json`` (the metrics, their fingerprint and the files it covers, which
+``quenchsim validate --check`` re-evaluates) and copies the study's PNGs.
 The ring studies reuse finished quench runs through :func:`cached_run` (resumable, as the pages were).
 """
 
@@ -26,6 +27,7 @@ import hashlib
 import importlib.util
 import json
 import math
+import re
 import shutil
 import time
 import tomllib
@@ -330,16 +332,84 @@ def select(studies: list[Study], only: list[str] | None) -> list[Study]:
 
 # ------------------------------------------------------------------------------------------- fingerprints
 
-def study_fingerprint(study: Study) -> str:
-    """:func:`code_fingerprint` plus ``cases/`` and the study's own folder (its code, cases and targets)."""
-    digest = hashlib.sha1(code_fingerprint().encode())
-    for folder in (ROOT / "cases", study.folder):
-        for path in sorted(folder.rglob("*")):
-            if path.is_file() and "__pycache__" not in path.parts and path.suffix != ".pyc":
-                digest.update(path.relative_to(ROOT).as_posix().encode() if path.is_relative_to(ROOT)
-                              else path.name.encode())
-                digest.update(path.read_bytes())
-    return digest.hexdigest()
+STUDY_MODULE_CALL = re.compile(r"study_module\(\s*[\"']([\w./-]+)[\"']")
+"""A study that uses another's helpers or runs names it: ``study_module("quench/ring_a")``."""
+
+
+@dataclass(frozen=True)
+class StudyInputs:
+    """What a study's results depend on, as paths relative to the checkout: ``code`` (the quenchsim modules of
+    its import closure, :func:`quenchsim.dependencies.code_closure`, and ``path::name`` for the runner helpers it
+    takes), ``data`` (its folder and those of the studies it uses, the package data of its modules, the case
+    files its files name and, when its modules read it, the materials folder) and their ``fingerprint``."""
+
+    code: tuple[str, ...]
+    data: tuple[str, ...]
+    fingerprint: str
+
+    def record(self) -> dict[str, list[str]]:
+        return {"code": list(self.code), "data": list(self.data)}
+
+
+def _study_folders(study: Study) -> list[Path]:
+    """The study's folder and those of the studies it uses through ``study_module`` (recursively)."""
+    root = study.folder.parents[1]
+    folders, todo = [], [study.folder]
+    while todo:
+        folder = todo.pop()
+        if folder in folders:
+            continue
+        folders.append(folder)
+        for py in folder.glob("*.py"):
+            todo += [root / key for key in STUDY_MODULE_CALL.findall(py.read_text()) if (root / key).is_dir()]
+    return folders
+
+
+def study_inputs(study: Study, root: Path = ROOT) -> StudyInputs:
+    """The code and data ``study`` depends on (``root``: the checkout holding quenchsim/, cases/, materials/)."""
+    from quenchsim.dependencies import code_closure, data_files, named_files, package_data
+    from quenchsim.materials import materials_dir
+
+    root = Path(root)
+    checkout = study.folder.parents[2]
+    folders = _study_folders(study)
+    own = [p for f in folders for p in sorted(f.rglob("*"))
+           if p.is_file() and "__pycache__" not in p.parts and p.suffix != ".pyc"]
+    texts = {p: p.read_text(errors="replace") for p in own if p.suffix in (".py", ".toml")}
+    closure = code_closure([t for p, t in texts.items() if p.suffix == ".py"], root)
+    materials = materials_dir() if root == ROOT else root / "materials"
+    data = [*own, *package_data(closure), *named_files(texts.values(), root / "cases")]
+    if closure.reads_materials:
+        data += data_files(materials)
+
+    def name(path: Path) -> str:
+        for base, prefix in ((checkout, ""), (root, ""), (materials, "materials/")):
+            if path.is_relative_to(base):
+                return prefix + path.relative_to(base).as_posix()
+        return path.as_posix()
+
+    digest = hashlib.sha1(b"study inputs v2")
+    code = sorted({name(p): p for p in closure.modules.values()}.items())
+    files = sorted({name(p): p for p in data}.items())
+    for key, path in [*code, *files]:
+        digest.update(f"\0{key}\0".encode())
+        digest.update(path.read_bytes())
+    for key, source in sorted(closure.parts.items()):
+        digest.update(f"\0{key}\0{source}".encode())
+    return StudyInputs(tuple([k for k, _ in code] + sorted(closure.parts)), tuple(k for k, _ in files),
+                       digest.hexdigest())
+
+
+def study_fingerprint(study: Study, root: Path = ROOT) -> str:
+    """The fingerprint of :func:`study_inputs`."""
+    return study_inputs(study, root).fingerprint
+
+
+def is_current(record: dict[str, Any] | None, inputs: StudyInputs) -> bool:
+    """True when ``record`` was computed from ``inputs``: same fingerprint, and written by this scheme (a record
+    without its ``inputs`` list predates it and counts as stale, never as fresh)."""
+    return (record is not None and isinstance(record.get("inputs"), dict)
+            and record.get("fingerprint") == inputs.fingerprint)
 
 
 def _toml(case: Any) -> str:
@@ -453,10 +523,11 @@ def run_study(study: Study, reports_dir: Path, runs_dir: Path = RUNS, force: boo
     reports_dir, runs_dir = Path(reports_dir), Path(runs_dir)
     reports_dir.mkdir(parents=True, exist_ok=True)
     try:
-        fingerprint = study_fingerprint(study)
+        inputs = study_inputs(study)
+        fingerprint = inputs.fingerprint
         record = cached_metrics(study, reports_dir)
         t0 = time.perf_counter()
-        if (not force and record is not None and record.get("fingerprint") == fingerprint
+        if (not force and record is not None and is_current(record, inputs)
                 and not isinstance(record["metrics"].get(SKIPPED), str)):  # a skipped study is retried
             status, metrics, seconds = "cached", record["metrics"], float(record.get("seconds", 0.0))
             files = list(record.get("files", []))
@@ -472,7 +543,8 @@ def run_study(study: Study, reports_dir: Path, runs_dir: Path = RUNS, force: boo
             for png in sorted(workdir.glob("*.png")):
                 shutil.copy2(png, reports_dir / png.name)
                 files.append(png.name)
-            record = {"study": study.key, "fingerprint": fingerprint, "seconds": seconds, "files": files,
+            record = {"study": study.key, "fingerprint": fingerprint, "inputs": inputs.record(),
+                      "seconds": seconds, "files": files,
                       "generated_utc": f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M}",
                       "metrics": metrics}
             text = json.dumps(record, indent=1, default=_json_default, allow_nan=True)
@@ -493,7 +565,7 @@ def check_study(study: Study, reports_dir: Path) -> StudyResult:
     record = cached_metrics(study, reports_dir)
     if record is None:
         return StudyResult(study.key, "not run", error=f"no {study.slug}.json in {reports_dir}")
-    stale = record.get("fingerprint") != study_fingerprint(study)
+    stale = not is_current(record, study_inputs(study))
     return StudyResult(study.key, "cached", float(record.get("seconds", 0.0)),
                        verdicts=evaluate(study.targets, record["metrics"]), stale=stale)
 
@@ -557,7 +629,11 @@ def summary_lines(results: list[StudyResult]) -> list[str]:
     return lines
 
 
-def exit_code(results: list[StudyResult]) -> int:
-    """1 when any target is missed -- open ones included -- or a study failed / has no metrics; else 0."""
-    return int(any(r.status in ("failed", "not run") or r.misses() for r in results))
+def exit_code(results: list[StudyResult], strict: bool = False) -> int:
+    """1 on a regression -- a target not declared open is missed -- or when a study failed / has no metrics;
+    an open target that is missed (a declared, known miss) is reported and fails only when ``strict``; else 0."""
+    def fails(v: Verdict) -> bool:
+        return v.state in ("missed", "absent") or (strict and v.counts_as_miss)
+
+    return int(any(r.status in ("failed", "not run") or any(fails(v) for v in r.verdicts) for r in results))
 

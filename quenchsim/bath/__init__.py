@@ -62,7 +62,7 @@ impinging-jet shape per point), htc (boiling curve, BoundaryHTC, air), segments 
 response), outline (simple section outlines and the ISO 9950 probe for diagnostics), plots.
 """
 
-from quenchsim.bath.config import BathConfig, NozzleRow, parse_bath
+from quenchsim.bath.config import BathConfig, NozzleRow, check_bath_keys, parse_bath
 from quenchsim.bath.htc import BoundaryHTC, air_htc, boundary_htc
 
-__all__ = ["BathConfig", "NozzleRow", "BoundaryHTC", "parse_bath", "boundary_htc", "air_htc"]
+__all__ = ["BathConfig", "NozzleRow", "BoundaryHTC", "check_bath_keys", "parse_bath", "boundary_htc", "air_htc"]

@@ -9,7 +9,7 @@ from typing import Any
 
 from quenchsim.bath.quenchant import (STILL_BATH_KIND, OilProperties, ProbeQuenchant, load_oil,
                                       load_probe_quenchant)
-from quenchsim.errors import InputError
+from quenchsim.errors import InputError, require_known_keys
 from quenchsim.materials import load_data_file
 
 SIDES = ("id", "od")
@@ -127,9 +127,7 @@ def _row(name: str, spec: Any, bath: dict[str, Any], field: str, where: str | No
     if not isinstance(spec, dict):
         raise InputError(where, spec, "must be a table {diameter_mm, count, standoff_mm, height_mm, ...}")
     spec = _plain(spec)
-    for key in spec:
-        if key not in ROW_KEYS:
-            raise InputError(f"{where}.{key}", spec[key], f"unknown key; a nozzle row takes {', '.join(ROW_KEYS)}")
+    require_known_keys(spec, ROW_KEYS, where)
     side = spec.get("side", name.split("_")[0])
     if side not in SIDES:
         raise InputError(f"{where}.side", side, "must be 'id' or 'od' (or start the row name with id_/od_)")
@@ -177,13 +175,22 @@ def load_layout(name: str, bath: dict[str, Any], field: str = "quench.bath.layou
     return tuple(_row(row, spec, bath, field, where=f"{Path(name).stem}.nozzles.{row}") for row, spec in rows.items())
 
 
-def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
-    """Parse a ``[quench.bath]`` table (condition overrides already merged); errors name the field."""
+def check_bath_keys(spec: Any, field: str = "quench.bath") -> None:
+    """Every key of a ``[quench.bath]`` table and of its ``[nozzles.<row>]`` tables is known (a misspelt key is
+    an error, never ignored); the values are checked by :func:`parse_bath`. For a condition's table too
+    (``[conditions.N.quench.bath]``), whichever condition runs."""
     if not isinstance(spec, dict):
         raise InputError(field, spec, "must be a table")
-    for key in spec:
-        if key not in BATH_KEYS:
-            raise InputError(f"{field}.{key}", spec[key], f"unknown key; [{field}] takes {', '.join(BATH_KEYS)}")
+    require_known_keys(spec, BATH_KEYS, field)
+    nozzles = spec.get("nozzles", {})
+    for name, row in (nozzles.items() if isinstance(nozzles, dict) else ()):
+        if isinstance(row, dict):
+            require_known_keys(_plain(row), ROW_KEYS, f"{field}.nozzles.{name}")
+
+
+def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
+    """Parse a ``[quench.bath]`` table (condition overrides already merged); errors name the field."""
+    check_bath_keys(spec, field)
     name = spec.get("quenchant")
     if not isinstance(name, str) or not name:
         raise InputError(f"{field}.quenchant", name, "is required: the name of a materials/quenchants/*.toml file")

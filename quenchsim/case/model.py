@@ -119,7 +119,8 @@ class OutputSpec:
 @dataclass(frozen=True)
 class MechanicsOptions:
     """Whether the stress is solved, the optional fixed point (case geometry, mm) and the solver options
-    passed on to :func:`quenchsim.mechanics.load_mechanics` (checked there, at parse time)."""
+    passed on to :func:`quenchsim.mechanics.load_mechanics` (names and values checked when the case loads, by
+    :func:`quenchsim.mechanics.solver_options`)."""
 
     enabled: bool
     fixed_point_mm: tuple[float, float] | None

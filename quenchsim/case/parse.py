@@ -18,7 +18,7 @@ import numpy as np
 
 from quenchsim.case.model import (AirStage, Case, MechanicsOptions, MeshSpec, OutputSpec, Probe, ProcessSpec,
                                   QuenchStage, TimeControl, TransferStage)
-from quenchsim.errors import InputError, require
+from quenchsim.errors import InputError, require, require_known_keys
 from quenchsim.geometry.profile import MM, profile_from_case
 
 DEFAULTS: dict[str, Any] = {
@@ -101,10 +101,32 @@ def _number(table: Mapping[str, Any], key: str, field: str, *, positive: bool = 
 def _table(data: Mapping[str, Any], name: str) -> Mapping[str, Any]:
     table = data.get(name, {})
     require(isinstance(table, Mapping), name, table, "must be a table")
-    for key in table:
-        require(key in TABLE_KEYS[name], f"{name}.{key}", table[key],
-                f"unknown key; [{name}] takes {', '.join(TABLE_KEYS[name])}")
+    require_known_keys(table, TABLE_KEYS[name], name)
     return table
+
+
+def _mechanics_keys() -> tuple[str, ...]:
+    from quenchsim.mechanics import OPTION_KEYS
+
+    return ("enabled", "fixed_point_mm", *OPTION_KEYS)
+
+
+def _condition_keys(name: str, condition: Any) -> None:
+    """The key names of ``[conditions.<name>]`` and of the tables in it (the bath's and its nozzle rows
+    included), checked whichever condition runs; their values are checked when the condition is run."""
+    from quenchsim.bath import check_bath_keys
+
+    where = f"conditions.{name}"
+    require(isinstance(condition, Mapping), where, condition, "must be a table")
+    for key in condition:
+        require(key in TABLE_KEYS[""] and key != "conditions", f"{where}.{key}", condition[key],
+                f"unknown table or key; [{where}] takes {', '.join(k for k in TABLE_KEYS[''] if k != 'conditions')}")
+    for table, allowed in (*((k, v) for k, v in TABLE_KEYS.items() if k), ("mechanics", _mechanics_keys())):
+        if isinstance(condition.get(table), Mapping):
+            require_known_keys(condition[table], allowed, f"{where}.{table}")
+    quench = condition.get("quench")
+    if isinstance(quench, Mapping) and "bath" in quench:
+        check_bath_keys(quench["bath"], f"{where}.quench.bath")
 
 
 def load_case(path: str | Path, condition: str | None = None,
@@ -126,6 +148,8 @@ def case_from_dict(raw: Mapping[str, Any], condition: str | None = None,
     """Build and check a case from a dict (as read from TOML); see :func:`load_case`."""
     conditions = raw.get("conditions", {})
     require(isinstance(conditions, Mapping), "conditions", conditions, "must be a table of [conditions.NAME] tables")
+    for key, table in conditions.items():
+        _condition_keys(key, table)
     data = deep_merge(DEFAULTS, {k: v for k, v in raw.items() if k != "conditions"})
     if condition is not None:
         condition = str(condition)
@@ -144,6 +168,8 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
     """Parse the merged table ``data`` (plus dotted ``overrides``) into a checked :class:`Case`."""
     data = deep_merge(data, {})
     for dotted, value in (overrides or {}).items():
+        require(dotted.split(".")[0] != "conditions", dotted, value, "sets the case as run, its condition merged: "
+                "give the key without conditions.<name>. and choose the condition")
         if value is None:
             _unset_dotted(data, dotted)
         else:
@@ -227,6 +253,10 @@ def _quench(data: Mapping[str, Any], segments: list[str], process: ProcessSpec) 
     model = q.get("htc_model", "table")
     require(model in ("bath", "table"), "quench.htc_model", model, "must be 'bath' or 'table'")
     bath = table = None
+    if "bath" in q:  # key names checked with either model: a misspelt key must not be ignored
+        from quenchsim.bath import check_bath_keys
+
+        check_bath_keys(q["bath"], "quench.bath")
     if model == "bath":
         from quenchsim.bath import parse_bath
 
@@ -277,10 +307,11 @@ def _time(data: Mapping[str, Any]) -> TimeControl:
 
 
 def _mechanics(data: Mapping[str, Any], material: str, process: ProcessSpec) -> MechanicsOptions:
-    from quenchsim.mechanics import OPTION_KEYS
+    from quenchsim.mechanics import solver_options
 
     m = data.get("mechanics", {})
     require(isinstance(m, Mapping), "mechanics", m, "must be a table")
+    require_known_keys(m, _mechanics_keys(), "mechanics")
     enabled = m.get("enabled", True)
     require(isinstance(enabled, bool), "mechanics.enabled", enabled, "must be true or false")
     fixed = m.get("fixed_point_mm")
@@ -290,9 +321,7 @@ def _mechanics(data: Mapping[str, Any], material: str, process: ProcessSpec) -> 
                 "mechanics.fixed_point_mm", fixed, "must be [r, z] in mm (case geometry)")
         fixed = (float(fixed[0]), float(fixed[1]))
     options = {k: v for k, v in m.items() if k not in ("enabled", "fixed_point_mm")}
-    for key, value in options.items():
-        require(key in OPTION_KEYS, f"mechanics.{key}", value,
-                f"unknown option; allowed: enabled, fixed_point_mm, {', '.join(OPTION_KEYS)}")
+    solver_options(options)  # the values too, before anything is written (the model is built with them at run)
     return MechanicsOptions(enabled=enabled, fixed_point_mm=fixed, solver_options=options)
 
 

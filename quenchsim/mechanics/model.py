@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from quenchsim.errors import InputError
+from quenchsim.errors import InputError, require_known_keys
 from quenchsim.materials import PHASES, Property, parse_property
 
 FREE_STRAIN_FORMS = ("specific_volume", "expansion")
@@ -261,6 +261,25 @@ def _volume_changes(fs: Mapping[str, Any], prefix: str, material: Mapping[str, A
     return out
 
 
+def solver_options(options: Mapping[str, Any] | None) -> dict[str, Any]:
+    """The case's ``[mechanics]`` solver options (:data:`OPTION_KEYS`) checked, names and values, with their
+    defaults: ``plasticity`` and ``trip`` (true), ``austenitizing_T_C`` (None: the material file's),
+    ``newton_rtol`` (1e-8), ``max_newton_iterations`` (25). Errors name ``mechanics.<key>``; the case is checked
+    with this when it loads (:mod:`quenchsim.case.parse`), the model is built with it."""
+    options = dict(options or {})
+    require_known_keys(options, OPTION_KEYS, "mechanics")
+    for key in ("plasticity", "trip"):
+        if not isinstance(options.get(key, True), bool):
+            raise InputError(f"mechanics.{key}", options[key], "must be true or false")
+    return {"plasticity": options.get("plasticity", True), "trip": options.get("trip", True),
+            "austenitizing_T_C": (_number(options, "austenitizing_T_C", "mechanics", 500.0, 1300.0)
+                                  if "austenitizing_T_C" in options else None),
+            "newton_rtol": _number(options, "newton_rtol", "mechanics", 1e-14, 1e-2) if "newton_rtol" in options
+            else 1e-8,
+            "max_newton_iterations": int(_number(options, "max_newton_iterations", "mechanics", 1, 1000))
+            if "max_newton_iterations" in options else 25}
+
+
 def load_mechanics(material: Mapping[str, Any], options: Mapping[str, Any] | None = None) -> MechanicsModel:
     """Build the :class:`MechanicsModel` from ``material["mechanics"]`` and the case ``[mechanics]`` options.
 
@@ -278,20 +297,13 @@ def load_mechanics(material: Mapping[str, Any], options: Mapping[str, Any] | Non
     if not isinstance(mech, Mapping):
         raise InputError(prefix, mech, f"material needs materials/{name}.mechanics.toml (or a [mechanics] table)")
     check_priors(mech, prefix)
-    for key in options:
-        if key not in OPTION_KEYS:
-            raise InputError(f"mechanics.{key}", options[key], f"unknown option; allowed: {', '.join(OPTION_KEYS)}")
-    for key in ("plasticity", "trip"):
-        if not isinstance(options.get(key, True), bool):
-            raise InputError(f"mechanics.{key}", options[key], "must be true or false")
-    plasticity = options.get("plasticity", True)
-    trip = options.get("trip", True)
+    checked = solver_options(options)
+    plasticity, trip = checked["plasticity"], checked["trip"]
 
     reference = _table(mech, "reference", prefix)
-    T_aust = (_number(options, "austenitizing_T_C", "mechanics", 500.0, 1300.0) if "austenitizing_T_C" in options
+    T_aust = (checked["austenitizing_T_C"] if checked["austenitizing_T_C"] is not None
               else _number(reference, "austenitizing_T_C", f"{prefix}.reference", 500.0, 1300.0))
-    newton_rtol = _number(options, "newton_rtol", "mechanics", 1e-14, 1e-2) if "newton_rtol" in options else 1e-8
-    max_it = int(_number(options, "max_newton_iterations", "mechanics", 1, 1000)) if "max_newton_iterations" in options else 25
+    newton_rtol, max_it = checked["newton_rtol"], checked["max_newton_iterations"]
 
     elastic = _table(mech, "elastic", prefix)
     E = _property(elastic, "E_Pa", f"{prefix}.elastic")
