@@ -8,8 +8,8 @@ from quenchsim.cli import main
 
 
 def test_cct_json_matches_hardenability_order(capsys):
-    """Below and above the ~12 C/s critical rate of the 100Cr6 data: pearlitic at 3 C/s, martensitic at 30 C/s; SUJ3
-    (slower bainite) forms no more bainite than SUJ2."""
+    """Below and above the ~12 C/s critical rate of the 100Cr6 data: pearlitic at 3 C/s, martensitic at 30 C/s; neither
+    steel forms more bainite than Kawulok et al. (2020) could have missed ('absence of bainite', detection 0.02)."""
     assert main(["cct", "SUJ3", "--T-aust", "845", "--rates", "3", "30", "--json"]) == 0
     suj3 = json.loads(capsys.readouterr().out)
     assert main(["cct", "SUJ2", "--T-aust", "845", "--rates", "3", "30", "--json"]) == 0
@@ -17,7 +17,8 @@ def test_cct_json_matches_hardenability_order(capsys):
     assert suj3["rates_C_s"] == [3.0, 30.0]
     for d in (suj2, suj3):
         assert d["final_fractions"]["pearlite"][0] > 0.99 and d["final_fractions"]["martensite"][1] > 0.8
-    assert suj3["final_fractions"]["bainite"][1] <= suj2["final_fractions"]["bainite"][1]
+    for d in (suj2, suj3):
+        assert max(d["final_fractions"]["bainite"]) <= 0.02
     for d in (suj2, suj3):
         total = [sum(d["final_fractions"][p][i] for p in d["final_fractions"]) for i in range(2)]
         assert all(abs(t - 1.0) < 1e-12 for t in total)

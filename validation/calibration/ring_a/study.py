@@ -95,7 +95,7 @@ def page(metrics: dict[str, Any]) -> str:
           f"{metrics['calibration_wall_time_min']:.1f} min ({metrics['calibration_runs_ran_now']} runs run in it, the rest "
           f"from the cache), whole study {metrics['study_wall_time_min']:.1f} min, {WORKERS} Dask workers on the "
           "shared 2-core machine.", "", "## Posterior", "", *posterior_rows(cal), "",
-          "Factors multiply the values of materials/SUJ3.mechanics.toml; the prior is log-uniform between the factor "
+          "Factors multiply the values of the inputs' data files (materials/SUJ3.mechanics.toml, materials/baths/jet_bath.toml); the prior is log-uniform between the factor "
           "bounds its range gives (quenchsim/calibration/inputs.py). The calibrated SUJ3 (posterior median) is written "
           "as a new file in the calibration folder; the priors are untouched. Corner plot: "
           "![corner](calibration_ring_a_corner.png)", "",
