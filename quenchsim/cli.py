@@ -30,7 +30,6 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "validate": ("quenchsim.commands.validate", "run the studies of validation/, write reports/, exit 1 on a missed target"),
     "view": ("quenchsim.commands.view", "off-screen render of a run's final field to PNG"),
     "quenchant": ("quenchsim.commands.quenchant", "still-bath h(T_s) of a quenchant from its ISO 9950 probe curve"),
-    "bench": ("quenchsim.commands.bench", "time the quench chain against a baseline commit, side by side (ratio)"),
 }
 
 

@@ -18,14 +18,14 @@ ROOT = Path(v.__file__).resolve().parents[1]
 @pytest.fixture(scope="module")
 def checkout(tmp_path_factory):
     """A copy of the package, validation/, cases/ and materials/ to edit."""
-    root = tmp_path_factory.mktemp("checkout")
+    copy = tmp_path_factory.mktemp("checkout")
     for name in ("quenchsim", "validation", "cases", "materials"):
-        shutil.copytree(ROOT / name, root / name, ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
-    return root
+        shutil.copytree(ROOT / name, copy / name, ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+    return copy
 
 
-def fingerprints(root: Path) -> dict[str, str]:
-    return {s.key: v.study_fingerprint(s, root) for s in v.discover(root / "validation")}
+def fingerprints(checkout_root: Path) -> dict[str, str]:
+    return {s.key: v.study_fingerprint(s, checkout_root) for s in v.discover(checkout_root / "validation")}
 
 
 def edit(path: Path, old: str, new: str) -> None:
@@ -95,7 +95,7 @@ def test_the_closure_follows_what_runs(tmp_path):
 
 
 @pytest.fixture()
-def toy(root):
+def toy(root):  # noqa: F811 -- `root` is the imported fixture, requested by name
     (study,) = v.discover(root)
     return study
 
@@ -117,7 +117,7 @@ def test_check_fails_on_a_regression_and_reports_an_open_miss(toy, tmp_path, cap
 
     reports = tmp_path / "reports"
     reports.mkdir()
-    monkeypatch.setattr(v, "discover", lambda root=v.VALIDATION_ROOT: [toy])
+    monkeypatch.setattr(v, "discover", lambda folder=v.VALIDATION_ROOT: [toy])
 
     def check(metrics: dict, *extra: str) -> int:
         (reports / "toy_one.json").write_text(json.dumps({"fingerprint": "x", "metrics": metrics}))

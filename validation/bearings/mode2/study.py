@@ -159,7 +159,7 @@ def page(m: dict) -> str:
           f"2.5 GPa point is k = {r['inferred_ellipticity']:.2f} (Delta tau_eff = {r['inferred_shear_range_factor']:.4f} p_max);",
           f"with it the 6 GPa point comes out at {r['p6000']['inferred_ellipse_2a_um']:.2f} um against 8.8 printed.",
           "",
-          f"**p^-2 scaling.** For a crack much smaller than the contact Delta tau_eff = c p_max, so 2a_crit ~ p_max^-2: the",
+          "**p^-2 scaling.** For a crack much smaller than the contact Delta tau_eff = c p_max, so 2a_crit ~ p_max^-2: the",
           f"model's log-log slope is {r['model_log_slope']:.6f}; the paper's two points give {r['paper_log_slope']:.3f}",
           "(2a P^2 = 312.5 and 316.8 um GPa^2).",
           "",

@@ -183,7 +183,7 @@ def page(m: dict) -> str:
           "",
           "## Table 2: why the roller load per unit torque falls",
           "",
-          f"The two-force roller needs tangential/normal = tan(eps/2) at both contacts and T = n N tan(eps/2) R. With a",
+          "The two-force roller needs tangential/normal = tan(eps/2) at both contacts and T = n N tan(eps/2) R. With a",
           "rigid wedge the roller load is proportional to the torque; the printed load per torque falls from "
           f"{t2['rated']['printed_load_per_torque']:.2f} to {t2['max']['printed_load_per_torque']:.2f} N per N m "
           f"({_pct(t2['max']['printed_load_per_torque'], t2['rated']['printed_load_per_torque'])}). Under load the wedge opens: both",

@@ -1,4 +1,5 @@
-"""`quenchsim bench`: the quench-chain benchmark, this code against a baseline, side by side.
+"""`python dev/bench.py`: the quench-chain benchmark, this code against a baseline, side by side (a maintainer's
+tool, not part of the user command line).
 
 Absolute times on a shared machine are noise; a ratio measured in one session, with the two codes run
 alternately on the same case, is not (much). Each run is a separate ``python -m quenchsim.cli run`` process
@@ -6,10 +7,10 @@ alternately on the same case, is not (much). Each run is a separate ``python -m 
 interpreter with another checkout of quenchsim installed (``--baseline-python``), or a commit that the
 command checks out into a git worktree and installs into its own venv (``--baseline-commit``).
 
-    quenchsim bench --baseline-commit cc353be                      # ring A, condition 1, default mesh, 3 x 2 runs
-    quenchsim bench --baseline-python /tmp/venv_old/bin/python --mesh 2 1 0.5 --repeat 1
-    quenchsim bench --baseline-commit cc353be --profile runs/bench/prof --out reports/bench.md
-    quenchsim bench --baseline-commit cc353be --set time.max_dX=0.01 --reference runs/ring_a_fine
+    python dev/bench.py --baseline-commit cc353be                      # ring A, condition 1, default mesh, 3 x 2 runs
+    python dev/bench.py --baseline-python /tmp/venv_old/bin/python --mesh 2 1 0.5 --repeat 1
+    python dev/bench.py --baseline-commit cc353be --profile runs/bench/prof --out reports/bench.md
+    python dev/bench.py --baseline-commit cc353be --set time.max_dX=0.01 --reference runs/ring_a_fine
 
 Per mesh factor it prints the median wall and CPU time of each side, their ratios, the time per DOF per step,
 and the largest differences of the results (dimension change, probe t500, HRC58 depth, residual hoop stress)
@@ -165,7 +166,7 @@ def top_functions(profile: Path, root: Path, n: int = 15) -> list[dict[str, Any]
 
 # -- report ------------------------------------------------------------------------------------------
 def markdown(record: dict[str, Any]) -> str:
-    md = [f"Case `{record['case']}` condition {record['condition']}, full chain, run by `quenchsim bench` on "
+    md = [f"Case `{record['case']}` condition {record['condition']}, full chain, run by `python dev/bench.py` on "
           f"{record['machine']}: {record['repeat']} runs per side and mesh factor, the two sides alternating "
           "(baseline, this code, baseline, ...), each a separate `quenchsim run` process; medians. Other load on "
           f"the machine: 1-minute load average {record['load_before']:.1f} before and {record['load_after']:.1f} "
@@ -282,3 +283,21 @@ def run(args: argparse.Namespace) -> int:
         args.out.write_text(text)
         args.out.with_suffix(".json").write_text(json.dumps(record, indent=1, default=str))
     return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Command-line entry: ``python dev/bench.py --baseline-commit REV [...]``; bad input: one line, exit 2."""
+    from quenchsim.errors import InputError
+
+    parser = argparse.ArgumentParser(prog="dev/bench.py", description=__doc__.splitlines()[0])
+    configure(parser)
+    args = parser.parse_args(argv)
+    try:
+        return run(args)
+    except InputError as err:
+        print(f"dev/bench.py: error: {err}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
