@@ -81,6 +81,15 @@ def test_a_run_refuses_a_foreign_non_empty_folder_before_writing(tmp_path, capsy
     assert sorted(p.name for p in folder.iterdir()) == ["thesis.tex"]
 
 
+def test_a_mesh_size_larger_than_the_section_is_refused_before_any_work(tmp_path, capsys):
+    """`--mesh-size 1000` ran the whole simulation and then failed with "Point is outside of the mesh"."""
+    out = tmp_path / "run"
+    assert main(["run", str(CYLINDER), "--mesh-size", "1000", "--out", str(out), "--quiet"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "mesh.size_mm = 1000.0: must be > 0 and at most 100 mm" in err[0]
+    assert not out.exists()
+
+
 def test_force_writes_into_a_foreign_folder_and_removes_nothing_of_its_own(tmp_path):
     from quenchsim.results.writer import claim_run_folder
 
