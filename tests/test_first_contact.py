@@ -120,3 +120,24 @@ def test_the_report_of_an_unfinished_run_says_so(tmp_path, summary, status):
     (run / files.SUMMARY_JSON).write_text(json.dumps({"case": "ring", "condition": "1", **summary}))
     html = write_report([run], tmp_path / "r.html")[0].read_text()
     assert f"Status: {status}." in html and "WARNING: " in html
+
+
+def test_the_top_level_help_names_every_command(capsys):
+    """Its description listed 10 of the 14 commands."""
+    from quenchsim.cli import COMMANDS
+
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    description = capsys.readouterr().out.split("positional arguments")[0]
+    words = set(description.replace("|", " ").split())
+    assert set(COMMANDS) | {"bearings"} <= words
+
+
+def test_mesh_help_documents_its_arguments(capsys):
+    with pytest.raises(SystemExit):
+        main(["mesh", "--help"])
+    lines = capsys.readouterr().out.splitlines()
+    case_line = next(line for line in lines if line.strip().startswith("case "))
+    assert "case file (TOML)" in case_line
+    at = next(i for i, line in enumerate(lines) if line.strip().startswith("--condition"))
+    assert "named condition" in " ".join(lines[at:at + 2])
