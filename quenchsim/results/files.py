@@ -53,9 +53,10 @@ def status_warning(summary: dict | None) -> str | None:
         return None
     end = summary.get("end_state", {})
     if status == "hot":
-        return (f"the part is still hot at the end of the run (up to {end.get('max_temperature_C', float('nan')):.0f} C "
-                f"at t = {end.get('time_s', float('nan')):.0f} s): temperatures, phases, hardness, dimensions and "
-                "stresses are those of the hot part, not of the cooled one (lengthen air.time_s)")
+        hottest, at = end.get("max_temperature_C", float("nan")), end.get("time_s", float("nan"))
+        return (f"the part is still hot at the end of the run (up to {hottest:.0f} C at t = {at:.0f} s): "
+                "temperatures, phases, hardness, dimensions and stresses are those of the hot part, not of the "
+                "cooled one (lengthen air.time_s)")
     at = summary.get("stopped_at_s")
     when = f" at t = {at:.4g} s" if isinstance(at, (int, float)) else ""
     return (f"the run did not finish (status {status}{when}): every result is the state where it stopped, not that "
