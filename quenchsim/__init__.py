@@ -33,12 +33,14 @@ def load_case(path: str | Path, condition: str | None = None, overrides: dict[st
     return _load_case(path, condition, overrides)
 
 
-def run(case: "Case", out: str | Path, progress: bool = True, resume: bool = False) -> "RunResult":
+def run(case: "Case", out: str | Path, progress: bool = True, resume: bool = False, force: bool = False
+        ) -> "RunResult":
     """Run a case into the folder ``out`` (see README "What a run writes"); ``resume=True`` continues the
-    interrupted run of the same case in ``out`` from its checkpoint."""
+    interrupted run of the same case in ``out`` from its checkpoint. A new run replaces an earlier run's outputs
+    in ``out``; a non-empty folder that is not a run folder is refused unless ``force=True``."""
     from quenchsim.pipeline import run as _run
 
-    return _run(case, out, progress=progress, resume=resume)
+    return _run(case, out, progress=progress, resume=resume, force=force)
 
 
 def load_results(run_dir: str | Path) -> "RunResults":

@@ -1,4 +1,4 @@
-"""The `quenchsim` command line: `run | mesh | cct | bath | sweep | optimise | calibrate | report | validate | view | bearings`.
+"""The `quenchsim` command line: one subcommand per task (``quenchsim --help`` lists them all, from ``COMMANDS``).
 
 Commands are registered in ``COMMANDS`` (name -> module with ``configure(parser)`` and
 ``run(args) -> int``); each module is imported only when its command is used, so a slow
@@ -41,7 +41,8 @@ def _available(module: str) -> bool:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="quenchsim", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="quenchsim", description="The quenchsim command line: "
+                                     f"{' | '.join([*COMMANDS, 'bearings'])} (quenchsim COMMAND --help for each).")
     sub = parser.add_subparsers(dest="command", required=True)
     argv = sys.argv[1:]
     for name, (module, help_text) in COMMANDS.items():

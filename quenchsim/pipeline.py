@@ -38,6 +38,7 @@ from quenchsim.io.checkpoint import read_checkpoint, write_checkpoint
 from quenchsim.materials import load_material, thermal_properties, transforms
 from quenchsim.progress import CoolingProgress, RunProgress, StepState, film_collapse_temperatures
 from quenchsim.results import RunWriter, files
+from quenchsim.results.writer import claim_run_folder
 from quenchsim.results.postprocess import NodalProjection, phase_statistics
 from quenchsim.results.shape import shape_change
 from quenchsim.results.summary import (FinalSection, hardness_summary, probe_times, residual_stress_summary,
@@ -57,11 +58,14 @@ class RunResult:
     probe_T_C: dict[str, np.ndarray] = field(repr=False, default_factory=dict)
 
 
-def run(case: Case, out_dir: str | Path, progress: bool = True, resume: bool = False) -> RunResult:
+def run(case: Case, out_dir: str | Path, progress: bool = True, resume: bool = False, force: bool = False
+        ) -> RunResult:
     """Run ``case`` and write everything into ``out_dir`` (the output contract: :mod:`quenchsim.results`);
-    ``resume`` continues the run of the same case in ``out_dir`` from its checkpoint."""
+    ``resume`` continues the run of the same case in ``out_dir`` from its checkpoint. A new run clears the
+    outputs of an earlier run in ``out_dir`` and refuses a non-empty folder that is not a run folder unless
+    ``force`` (:func:`quenchsim.results.writer.claim_run_folder`)."""
     try:
-        quench_run = QuenchRun(case, Path(out_dir), progress=progress, resume=resume)
+        quench_run = QuenchRun(case, Path(out_dir), progress=progress, resume=resume, force=force)
     except KeyboardInterrupt:
         # Ctrl-C while meshing or building the solvers: nothing was computed; a fresh run's folder says so (a
         # resumed run keeps its earlier summary and checkpoint, both still valid)
@@ -218,11 +222,15 @@ class _Kinetics:
 class QuenchRun:
     """Everything of one run: section, solvers, output writer. Use :func:`run`."""
 
-    def __init__(self, case: Case, out_dir: Path, progress: bool = True, resume: bool = False) -> None:
+    def __init__(self, case: Case, out_dir: Path, progress: bool = True, resume: bool = False,
+                 force: bool = False) -> None:
         self.case = case
-        # a resumed run checks its case against the folder's before anything is written or meshed
+        # a resumed run checks its case against the folder's before anything is written or meshed; a new one
+        # checks the folder and clears an earlier run's outputs (stale frames, an earlier summary's status)
         self.checkpoint_path = Path(out_dir) / files.CHECKPOINT_NPZ
         checkpoint = read_resumable(case, Path(out_dir)) if resume else None
+        if not resume:
+            claim_run_folder(out_dir, force)
         self.writer = RunWriter(out_dir)
         self.out = self.writer.out
         self.writer.case(case.resolved())
@@ -329,13 +337,15 @@ class QuenchRun:
                                  "error": f"post-processing: {exc!r}"})
             raise
         summary["end_state"] = end_state
+        if status == "ok" and not end_state["at_room_temperature"]:
+            status = "hot"      # the stages ended before the part cooled: its results are not the finished part's
         summary["status"] = status
         if error:
             summary["error"] = error
             summary["stopped_at_s"] = self.thermal.time_s
         self.writer.summary(summary)
         self.bar.close()
-        if status == "ok":
+        if status in files.FINISHED_STATUSES:
             self.checkpoint_path.unlink(missing_ok=True)   # the run is complete: nothing to resume
         if status == "interrupted":
             raise RunInterrupted(f"run interrupted at t = {self.thermal.time_s:.4g} s; results up to there are in "

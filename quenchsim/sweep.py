@@ -283,7 +283,7 @@ def run_point(raw_case: dict[str, Any], case_path: str | None, condition: str | 
               out_dir: str) -> dict[str, Any]:
     """Run one case of a sweep into ``out_dir`` (executed on a Dask worker; never raises).
 
-    Returns ``{"status": "ok" | "failed", "error": str | None, "summary": dict | None, "wall_s": float,
+    Returns ``{"status": "ok" | "hot" | "failed" | ..., "error": str | None, "summary": dict | None, "wall_s": float,
     "cpu_s": float}`` (wall and CPU time of this process for the case).
     """
     from quenchsim.pipeline import run as run_case
@@ -306,20 +306,21 @@ def run_point(raw_case: dict[str, Any], case_path: str | None, condition: str | 
         summary = read_summary(out)
         status, error = "failed", f"{type(exc).__name__}: {exc}"
         log.debug("case %s failed:\n%s", out, traceback.format_exc())
-    if status != "ok":
+    if status not in files.FINISHED_STATUSES:
         _write_json(out / CASE_JSON, {**record, "error": error})
     return {"status": status, "error": error, "summary": summary, "wall_s": time.perf_counter() - t0,
             "cpu_s": time.process_time() - cpu0}
 
 
 def finished(case_dir: Path, inputs_hash: str) -> dict[str, Any] | None:
-    """The summary of a case folder that finished with status ok for the same inputs, else None."""
+    """The summary of a case folder that finished (status ok or hot) for the same inputs, else None."""
     try:
         record = json.loads((case_dir / CASE_JSON).read_text())
     except (OSError, ValueError):
         return None
     summary = read_summary(case_dir)
-    return summary if summary and record.get("inputs_hash") == inputs_hash and summary.get("status") == "ok" else None
+    return (summary if summary and record.get("inputs_hash") == inputs_hash
+            and summary.get("status") in files.FINISHED_STATUSES else None)
 
 
 class ResultsTable:
@@ -419,7 +420,8 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, scheduler: str | None = None
     for name, point in zip(names, spec.points):
         summary = finished(out / name, case_hash(spec.raw_case, spec.condition, spec.overrides(point)))
         if summary is not None:
-            table.rows[name] = {"case": name, "status": "ok", "error": "", **point, **flatten_summary(summary)}
+            table.rows[name] = {"case": name, "status": files.run_status(summary), "error": "", **point,
+                                **flatten_summary(summary)}
         else:
             todo.append((name, point))
     table.write()
@@ -433,7 +435,7 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, scheduler: str | None = None
     def record(name: str, result: dict[str, Any]) -> None:
         nonlocal ran, failed
         ran += 1
-        failed += result["status"] != "ok"
+        failed += result["status"] not in files.FINISHED_STATUSES
         timing = {f"sweep.case_{k}": result[k] for k in ("wall_s", "cpu_s") if k in result}
         row = table.add(name, by_name[name], result["status"], result["error"], result["summary"], timing)
         bar.update(1)

@@ -55,7 +55,13 @@ def test_shipped_example_loads_with_its_relative_material_path():
     ({"quench.bath.agitation": "flow", "quench.bath.agitation_m_s": -0.2},
      "quench.bath.agitation_m_s = -0.2: must be >= 0"),
     ({"quench.bath.quenchant": "castor_oil"}, "quench.bath.quenchant = 'castor_oil': unknown"),
-    ({"geometry.chamfer_mm": 7.0}, "geometry.chamfer_mm = 7.0: must be >= 0 and less than half the wall"),
+    # it said "less than half the wall (12.5 mm)", quoting the whole wall (issue 36)
+    ({"geometry.chamfer_mm": 7.0}, "geometry.chamfer_mm = 7.0: must be >= 0 and less than 6.25 mm, half the smaller "
+                                   "of the wall (12.5 mm) and the width (100 mm)"),
+    # `--mesh-size 1000` ran the whole quench, then failed in the traverses with a traceback (issue 36)
+    ({"mesh.size_mm": 1000.0}, "mesh.size_mm = 1000.0: must be > 0 and at most 100 mm, the larger extent of the "
+                               "section (radial 12.5 mm, axial 100 mm)"),
+    ({"mesh.surface_size_mm": 101.0}, "mesh.surface_size_mm = 101.0: must be > 0 and at most 100 mm"),
 ])
 def test_bad_handling_inputs_are_one_line_errors(override, message):
     with pytest.raises(InputError) as err:

@@ -2,8 +2,11 @@
 quenchants (quenchsim/_data) and runs the reference case."""
 
 import json
+import os
+import site
 import subprocess
 import sys
+import sysconfig
 from pathlib import Path
 
 import pytest
@@ -12,14 +15,40 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _run(cmd: list[str], cwd: Path, timeout: float) -> subprocess.CompletedProcess:
-    res = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+    # without PYTHONPATH: a checkout on it (PYTHONPATH=. pytest) would be imported instead of the wheel
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    res = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env)
     assert res.returncode == 0, f"{' '.join(map(str, cmd))}\n{res.stdout[-2000:]}\n{res.stderr[-2000:]}"
     return res
 
 
+def running_site_folders() -> list[str]:
+    """The site folders of the interpreter running the tests (a venv's own when it runs in one), where numpy,
+    scikit-fem, ... are installed: `venv --system-site-packages` would see the base interpreter's instead, which
+    lacks them when the tests run in a plain venv (the README's install)."""
+    folders = [*site.getsitepackages(), sysconfig.get_paths()["purelib"], sysconfig.get_paths()["platlib"]]
+    if site.ENABLE_USER_SITE:
+        folders.append(site.getusersitepackages())
+    # and the package folders its own .pth files added (a venv that borrows another's packages)
+    folders += [f for f in sys.path if Path(f).name in ("site-packages", "dist-packages")]
+    return [f for f in dict.fromkeys(folders) if Path(f).is_dir() and ROOT not in Path(f).resolve().parents]
+
+
+def link_site_folders(venv: Path, folders: list[str]) -> Path:
+    """A .pth file in ``venv``'s site-packages that appends ``folders`` to its sys.path (plain paths, so the
+    folders' own .pth files -- an editable quenchsim among them -- are not run: the wheel's quenchsim comes
+    first and is the only one)."""
+    python = venv / "bin" / "python"
+    purelib = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                             capture_output=True, text=True, check=True).stdout.strip()
+    pth = Path(purelib) / "_quenchsim_test_deps.pth"
+    pth.write_text("".join(f"{f}\n" for f in folders))
+    return pth
+
+
 def test_built_wheel_runs_the_reference_case_outside_the_checkout(tmp_path):
     """The wheel is built from this checkout and installed (without dependencies) into a new venv that sees
-    the machine's site packages for numpy, scikit-fem, ... but no quenchsim other than the wheel's."""
+    the running interpreter's site packages for numpy, scikit-fem, ... but no quenchsim other than the wheel's."""
     wheels = tmp_path / "wheels"
     built = subprocess.run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps", "-w", str(wheels), str(ROOT)],
                            cwd=tmp_path, capture_output=True, text=True, timeout=600)
@@ -28,7 +57,8 @@ def test_built_wheel_runs_the_reference_case_outside_the_checkout(tmp_path):
     assert built.returncode == 0, built.stderr[-2000:]
     wheel = next(wheels.glob("quenchsim-*.whl"))
     venv = tmp_path / "venv"
-    _run([sys.executable, "-m", "venv", "--system-site-packages", str(venv)], tmp_path, 300)
+    _run([sys.executable, "-m", "venv", str(venv)], tmp_path, 300)
+    link_site_folders(venv, running_site_folders())
     python = venv / "bin" / "python"
     _run([str(python), "-m", "pip", "install", "-q", "--no-deps", "--force-reinstall", str(wheel)], tmp_path, 600)
     where = _run([str(python), "-c", "import quenchsim, quenchsim.materials as m; print(quenchsim.__file__); "

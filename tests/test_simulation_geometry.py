@@ -41,6 +41,7 @@ def test_outputs_are_on_the_final_part_at_room_temperature(tmp_path):
     wall_mm = 0.5 * (after["od"] - after["id"])
     depth = summary["hardness"]["depth_mm"]["HRC58_bore_mid"]
     assert summary["hardness"]["through_hardened"] and abs(depth - wall_mm) < 2e-3   # the whole final wall
+    assert summary["hardness"]["through_hardened_mid"]       # which the terminal says as "through-hardened"
     traverse = load(tmp_path).hardness_traverse
     assert traverse["depth_mm"].max() <= wall_mm
     final = run.final_vertices()

@@ -17,6 +17,7 @@ import tomli_w
 from conftest import default_ctrl_c
 
 from quenchsim.errors import InputError
+from quenchsim.results import files
 from quenchsim.sweep import (RESULTS_CSV, case_hash, case_names, finished, load_sweep, make_sweep, read_results,
                              run_sweep)
 
@@ -31,7 +32,8 @@ def _example():
 
 
 def small_case() -> dict:
-    """A 5 mm wall ring on a 4 mm mesh, 20 s oil + 10 s air, thermal and phases only: ~1 s of CPU per case."""
+    """A 5 mm wall ring on a 4 mm mesh, 20 s oil + 10 s air, thermal and phases only: ~1 s of CPU per case (the
+    part is still warm at the end: status "hot", a finished case)."""
     case = _example().build_case(wall_mm=5.0, mesh_mm=4.0, quench_time_s=20.0, air_time_s=10.0)
     case["mechanics"] = {"enabled": False}
     return case
@@ -120,7 +122,7 @@ def test_failed_case_is_recorded_and_the_rest_go_on_and_rerun_skips_finished(tmp
     assert rows["size_mm=3"]["status"] == "failed" and "did not converge" in rows["size_mm=3"]["error"]
     ok = rows["size_mm=4"]
     summary = json.loads((tmp_path / "size_mm=4" / "summary.json").read_text())
-    assert ok["status"] == "ok" and ok["mesh.size_mm"] == 4.0
+    assert ok["status"] == "hot" and ok["mesh.size_mm"] == 4.0
     assert ok["hardness.core_HRC"] == pytest.approx(summary["hardness"]["core_HRC"])
     assert ok["probes.near_bore.t_to_500C_s"] == pytest.approx(summary["probes"]["near_bore"]["t_to_500C_s"])
     mtime = (tmp_path / "size_mm=4" / "summary.json").stat().st_mtime_ns
@@ -149,7 +151,7 @@ def test_ctrl_c_keeps_every_finished_case_and_a_rerun_does_the_rest(tmp_path):
 
     first = run_sweep(spec, tmp_path, workers=0, progress=False, on_result=ctrl_c_after_the_first_case)
     assert first.interrupted and (first.ran, first.pending) == (1, 2)
-    assert [r["status"] for r in read_results(tmp_path / RESULTS_CSV)] == ["ok"]
+    assert [r["status"] for r in read_results(tmp_path / RESULTS_CSV)] == ["hot"]
     second = run_sweep(spec, tmp_path, workers=0, progress=False)
     assert (second.skipped, second.ran, second.pending, second.interrupted) == (1, 2, 0, False)
 
@@ -170,7 +172,7 @@ def _hash(sweep: Path, case: str) -> str:
 
 def _ok_rows(csv_path: Path) -> list[dict]:
     try:
-        return [r for r in read_results(csv_path) if r["status"] == "ok"]
+        return [r for r in read_results(csv_path) if r["status"] in files.FINISHED_STATUSES]
     except (OSError, KeyError):
         return []
 
@@ -233,7 +235,7 @@ def test_sweep_runs_on_a_separately_started_scheduler(tmp_path):
         spec = make_sweep(small_case(), grid={"quench.time_s": [20.0, 25.0]})
         outcome = run_sweep(spec, tmp_path / "out", scheduler=address, progress=False)
         assert (outcome.ran, outcome.failed) == (2, 0)
-        assert all(r["status"] == "ok" for r in read_results(tmp_path / "out" / RESULTS_CSV))
+        assert all(r["status"] == "hot" for r in read_results(tmp_path / "out" / RESULTS_CSV))
         assert os.getpid() not in worker_pids
     finally:
         for p in reversed(procs):
@@ -253,7 +255,7 @@ def test_example_case_script_runs_and_a_thicker_wall_ends_softer(tmp_path):
     assert res.returncode == 0, res.stderr
     assert (tmp_path / "hardness_vs_wall.png").stat().st_size > 5000
     rows = read_results(tmp_path / RESULTS_CSV)
-    assert [r["status"] for r in rows] == ["ok", "ok"]
+    assert [r["status"] for r in rows] == ["hot", "hot"] and "note: still hot at the end" in res.stdout
     thin, thick = rows
     assert thick["hardness.core_HRC"] < thin["hardness.core_HRC"]
 

@@ -148,3 +148,17 @@ def test_cached_run_is_reused_only_with_the_same_inputs_and_code(tmp_path, monke
     monkeypatch.setattr(v, "code_fingerprint", lambda: "another version")
     v.cached_run(case_from_dict(small_case(), None, {"quench.time_s": 21.0}), tmp_path / "r")
     assert len(calls) == 3
+
+
+@pytest.mark.parametrize("args", [["--check"], ["--fast"], []], ids=["check", "fast", "run"])
+def test_validate_without_studies_refuses_in_one_line(tmp_path, monkeypatch, capsys, args):
+    """Installed from the wheel there is no validation/: `--check` printed "0 met, 0 missed, 0 open" and exited 0,
+    `--fast` and a plain run crashed writing reports/index.json (issue 36)."""
+    from quenchsim.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(v, "discover", lambda *a, **k: [])
+    assert main(["validate", *args]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "holds no studies" in err[0]
+    assert not any(tmp_path.iterdir())

@@ -21,6 +21,7 @@ from tqdm import tqdm
 
 from quenchsim.calibration.inputs import FreeInput, derived_files, used_by
 from quenchsim.case import Case
+from quenchsim.results import files
 from quenchsim.sweep import case_hash, finished, run_on_dask, run_point
 
 
@@ -92,7 +93,7 @@ def run_requests(requests: Sequence[RunRequest], runs_dir: Path, workers: int = 
     bar = tqdm(total=len(unique) - len(pending), initial=cached, desc=desc, unit="run", disable=not progress)
 
     def record(name: str, result: Mapping[str, Any]) -> None:
-        ok = result["status"] == "ok"
+        ok = result["status"] in files.FINISHED_STATUSES   # a hot part's results are kept (its status says so)
         summaries[name] = result["summary"] if ok else None
         if not ok:
             failed[name] = str(result.get("error") or result["status"])

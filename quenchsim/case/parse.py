@@ -19,7 +19,7 @@ import numpy as np
 from quenchsim.case.model import (AirStage, Case, MechanicsOptions, MeshSpec, OutputSpec, Probe, ProcessSpec,
                                   QuenchStage, TimeControl, TransferStage)
 from quenchsim.errors import InputError, require, require_known_keys
-from quenchsim.geometry.profile import MM, profile_from_case
+from quenchsim.geometry.profile import MM, Profile, profile_from_case
 
 DEFAULTS: dict[str, Any] = {
     "mesh": {"size_mm": 5.0, "surface_size_mm": 1.2, "surface_layer_mm": 10.0},
@@ -188,10 +188,7 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
             "must be 'annealed' or 'austenitised'")
     segments = sorted({s.name for s in profile.segments} - {"axis"})
 
-    m = _table(data, "mesh")
-    mesh = MeshSpec(size_mm=_number(m, "size_mm", "mesh.size_mm", positive=True),
-                    surface_size_mm=_number(m, "surface_size_mm", "mesh.surface_size_mm", positive=True),
-                    surface_layer_mm=_number(m, "surface_layer_mm", "mesh.surface_layer_mm", minimum=0.0))
+    mesh = _mesh(_table(data, "mesh"), profile)
     p = _table(data, "process")
     process = ProcessSpec(
         austenitising_temperature_C=_number(p, "austenitising_temperature_C", "process.austenitising_temperature_C",
@@ -217,6 +214,20 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
                 air=air, time=time,
                 output=OutputSpec(frames=frames, checkpoint_minutes=checkpoint_minutes), mechanics=mechanics,
                 probes=probes)
+
+
+def _mesh(m: Mapping[str, Any], profile: Profile) -> MeshSpec:
+    """The element sizes: positive and no larger than the section's larger extent (a coarser mesh cannot
+    represent the section: `--mesh-size 1000` ran the whole quench, then failed in the traverses)."""
+    r0, r1, z0, z1 = profile.bounds()
+    largest_mm = max(r1 - r0, z1 - z0) / MM
+    sizes = {}
+    for key in ("size_mm", "surface_size_mm"):
+        value = _number(m, key, f"mesh.{key}", positive=True)
+        require(value <= largest_mm, f"mesh.{key}", value, f"must be > 0 and at most {largest_mm:g} mm, the larger "
+                f"extent of the section (radial {(r1 - r0) / MM:g} mm, axial {(z1 - z0) / MM:g} mm)")
+        sizes[key] = value
+    return MeshSpec(**sizes, surface_layer_mm=_number(m, "surface_layer_mm", "mesh.surface_layer_mm", minimum=0.0))
 
 
 def _material(data: Mapping[str, Any], case_path: Path | None) -> str:

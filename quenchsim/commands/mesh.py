@@ -16,10 +16,14 @@ from quenchsim.geometry.profile import MM
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("case", type=Path)
-    parser.add_argument("--condition")
+    parser.description = ("Build the section mesh of a case and print its size and named boundary segments "
+                          "(files only with --out / --png).")
+    parser.add_argument("case", type=Path, help="case file (TOML), e.g. cases/crb_outer_ring.toml")
+    parser.add_argument("--condition", help="named condition of the case file (required when it has conditions; "
+                                            "the geometry and mesh may differ between them)")
     parser.add_argument("--out", type=Path, help="write the gmsh .msh file here")
-    parser.add_argument("--mesh-size", type=float, help="core element size in mm")
+    parser.add_argument("--mesh-size", type=float, help="core element size in mm (surface size scales with it; "
+                                                        "default: the case's mesh.size_mm)")
     parser.add_argument("--png", type=Path, help="plot the mesh with its named boundary segments")
 
 

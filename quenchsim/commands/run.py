@@ -1,4 +1,4 @@
-"""`quenchsim run CASE.toml --condition NAME --out DIR [--mesh-size MM] [--set KEY=VALUE ...] [--resume]
+"""`quenchsim run CASE.toml --condition NAME --out DIR [--mesh-size MM] [--set KEY=VALUE ...] [--resume] [--force]
 [--uncertainty N [--posterior DIR]]`."""
 
 from __future__ import annotations
@@ -10,6 +10,7 @@ from pathlib import Path
 
 from quenchsim.case import load_case
 from quenchsim.errors import InputError
+from quenchsim.results import files
 
 
 def parse_sets(items: list[str]) -> dict[str, object]:
@@ -37,6 +38,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="override any case field, e.g. --set quench.time_s=600")
     parser.add_argument("--resume", action="store_true",
                         help="continue the interrupted run of this case in --out from its checkpoint")
+    parser.add_argument("--force", action="store_true",
+                        help="write into --out even when it is a non-empty folder that is not a quenchsim run (a "
+                             "run folder's earlier outputs are always replaced)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     parser.add_argument("--json", action="store_true", help="print the key results as JSON instead of a table")
     parser.add_argument("--uncertainty", type=int, metavar="N",
@@ -61,7 +65,7 @@ def run(args: argparse.Namespace) -> int:
 
         uncertain_inputs(case, args.uncertainty, args.posterior)
     logging.basicConfig(level=logging.WARNING, format="quenchsim: %(message)s")
-    result = run_case(case, out, progress=not args.quiet, resume=args.resume)
+    result = run_case(case, out, progress=not args.quiet, resume=args.resume, force=args.force)
     s = result.summary
     if args.uncertainty is not None:
         from quenchsim.calibration.propagate import band_table, propagate
@@ -71,8 +75,9 @@ def run(args: argparse.Namespace) -> int:
         if not args.json:
             print(band_table(s["uncertainty"]))
     if args.json:
-        print(json.dumps({"out": str(out), "status": s["status"], "probes": s["probes"], "hardness": s["hardness"],
-                          **({"dimensions_mm": s["dimensions_mm"]} if "dimensions_mm" in s else {}),
+        # a material that does not transform has no hardness (summary.json "notes" says so)
+        print(json.dumps({"out": str(out), "status": s["status"], "probes": s["probes"],
+                          **{k: s[k] for k in ("hardness", "notes", "dimensions_mm") if k in s},
                           "end_state": s["end_state"], "solver": s["solver"],
                           **({"uncertainty": s["uncertainty"]} if "uncertainty" in s else {})}, indent=2))
     else:
@@ -82,12 +87,11 @@ def run(args: argparse.Namespace) -> int:
 
 def summary_table(s: dict, out: Path) -> str:
     """A short plain-text table of a run's key results (everything else is in summary.json)."""
-    rows = [f"{s['case']} condition {s['condition'] or '-'}: status {s['status']}, "
+    rows = [f"{s['case']} condition {s['condition'] or '-'}: status {files.run_status(s)}, "
             f"{s['solver']['steps']} steps, {s['solver']['wall_time_s']:.1f} s wall -> {out}"]
-    end = s["end_state"]
-    if not end["at_room_temperature"]:
-        rows.append(f"WARNING: the part is still hot (up to {end['max_temperature_C']:.0f} C at t = {end['time_s']:.0f} s): "
-                    "every result below is that of the hot part")
+    warning = files.status_warning(s)
+    if warning:
+        rows.append(f"WARNING: {warning}")
     rows.append(f"{'probe':<10}{'t to 500 C (s)':>16}{'t to 300 C (s)':>16}{'t8/5 (s)':>10}")
     fmt = lambda v, w: f"{v:>{w}.1f}" if v is not None else f"{'-':>{w}}"  # noqa: E731
     for name, p in s["probes"].items():
@@ -95,9 +99,14 @@ def summary_table(s: dict, out: Path) -> str:
     if "hardness" in s:
         h = s["hardness"]
         # a solid section's "bore" depth is None: its traverse starts on the axis, not on a surface
-        rows.append("HRC58 depth at mid-width (mm): "
-                    + ", ".join(f"{k.split('_')[1]} {'-' if v is None else f'{v:.2f}'}" for k, v in h["depth_mm"].items())
-                    + f"; core {h['core_HRC']:.1f} HRC")
+        if h.get("through_hardened_mid"):   # the depths are the whole wall: say so, not a number equal to it
+            rows.append(f"HRC58 depth at mid-width: through-hardened (>= {h.get('threshold_HRC', 58.0):g} HRC across "
+                        f"the wall); core {h['core_HRC']:.1f} HRC")
+        else:
+            rows.append("HRC58 depth at mid-width (mm): "
+                        + ", ".join(f"{k.split('_')[1]} {'-' if v is None else f'{v:.2f}'}"
+                                    for k, v in h["depth_mm"].items())
+                        + f"; core {h['core_HRC']:.1f} HRC")
     rows += [f"note: {note}" for note in s.get("notes", [])]
     if "dimensions_mm" in s:
         d = s["dimensions_mm"]

@@ -49,11 +49,18 @@ def list_lines(studies: list) -> list[str]:
 
 def run(args: argparse.Namespace) -> int:
     from quenchsim import validation as v
+    from quenchsim.errors import InputError
 
     studies = v.discover()
+    if not studies:   # an installed wheel: the studies come with a source checkout only
+        raise InputError("validation folder", str(v.VALIDATION_ROOT), "holds no studies (<area>/<study>/study.py); "
+                         "they come with a clone of the quenchsim repository, not with an installed package: run "
+                         "quenchsim validate in a clone")
     chosen = v.select(studies, args.only)
     if args.fast:
         chosen = [s for s in chosen if not s.slow()]
+    if not chosen:
+        raise InputError("--fast", True, "none of the chosen studies runs in seconds; see quenchsim validate --list")
     if args.list:
         print("\n".join(list_lines(chosen)))
         return 0

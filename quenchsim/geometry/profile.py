@@ -150,7 +150,8 @@ def rectangular_ring(inner_diameter_m: float, outer_diameter_m: float, width_m: 
     wall = (outer_diameter_m - inner_diameter_m) / 2
     field = "geometry.chamfer_mm" if chamfer_m > 0 else "geometry.edge_radius_mm"
     require(cut >= 0 and 2 * cut < min(wall, width_m), field, cut / MM,
-            f"must be >= 0 and less than half the wall ({wall / MM:g} mm) and the width")
+            f"must be >= 0 and less than {min(wall, width_m) / 2 / MM:g} mm, half the smaller of the wall "
+            f"({wall / MM:g} mm) and the width ({width_m / MM:g} mm)")
     ri, ro = inner_diameter_m / 2, outer_diameter_m / 2
     kind = "radius" if edge_radius_m > 0 else "chamfer"
     if ri == 0:  # solid section: the axis is a symmetry line, not a surface; only the two OD corners are cut

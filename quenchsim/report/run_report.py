@@ -24,7 +24,7 @@ import numpy as np
 from quenchsim.errors import InputError
 from quenchsim.report import report_plots as plots
 from quenchsim.report.report_data import PHASES, is_sweep_dir, measured_dimensions
-from quenchsim.results import RunResults, load
+from quenchsim.results import RunResults, files, load
 
 RESPONSE_OUTPUTS = ("hardness.depth_mm.", "hardness.core_HRC", "hardness.surface_HRC.", "dimensions_mm.change.",
                     "shape_mm.change.bore_crown", "shape_mm.change.od_crown", "shape_mm.change.bore_taper",
@@ -106,14 +106,16 @@ def _summary_tables(run: RunResults) -> list[Item]:
     s = run.summary or {}
     items = []
     solver = s.get("solver", {})
-    status = s.get("status", "no summary.json")
-    text = f"Status: {status}."
+    text = f"Status: {files.run_status(run.summary)}."
     if s.get("error"):
         text += f" Error: {s['error']} (stopped at t = {fmt(s.get('stopped_at_s'))} s)."
     if solver:
         text += (f" Solver: {fmt(solver.get('steps'))} steps, {fmt(solver.get('dofs'))} dofs, "
                  f"wall time {fmt(solver.get('wall_time_s'))} s.")
     items.append(Item("text", "Status", text=text))
+    warning = files.status_warning(run.summary)
+    if warning:
+        items.append(Item("text", "Warning", text=f"WARNING: {warning}."))
     views = [name for name in ("results.pvd", "final_3d.vtu") if (run.path / name).is_file()]
     if views:
         items.append(Item("text", "ParaView", text=f"For ParaView: {' and '.join(views)} in {run.path} "
@@ -126,7 +128,8 @@ def _summary_tables(run: RunResults) -> list[Item]:
                                 for n, p in probes.items()]))
     hard = s.get("hardness", {})
     if hard:
-        rows = [[f"depth to {fmt(hard.get('threshold_HRC', 58.0))} HRC, {k} (mm)", v]
+        through = "through-hardened" if hard.get("through_hardened_mid") else None   # the depth is the wall
+        rows = [[f"depth to {fmt(hard.get('threshold_HRC', 58.0))} HRC, {k} (mm)", through or v]
                 for k, v in hard.get("depth_mm", {}).items()]
         rows += [[f"surface HRC, {k}", v] for k, v in hard.get("surface_HRC", {}).items()]
         rows += [["core HRC", hard.get("core_HRC")]]
@@ -155,6 +158,10 @@ def _dimension_table(run: RunResults, missing: list[str]) -> list[Item]:
     header = ["dimension (mm)", "before (sim)", "after (sim)", "change (sim)", "before (measured)",
               "after (measured)", "change (measured)", "change: sim - measured"]
     items = [Item("table", "Dimensions before and after the quench", header=header, rows=rows)]
+    warning = files.status_warning(run.summary)
+    if warning:
+        items.append(Item("text", "Not the finished part", text=f"WARNING: {warning}; the simulated dimensions are "
+                                                                 "not comparable with measured ones."))
     if not meas["before"] and not meas["after"]:
         items.append(Item("text", "Measurements", text="The case file carries no [measured] table."))
     else:
@@ -281,16 +288,19 @@ def sweep_section(path: Path) -> Section:
     meta = json.loads((path / SWEEP_JSON).read_text())
     params: list[str] = meta.get("parameters", [])
     rows = read_results(path / RESULTS_CSV)
-    ok = [r for r in rows if r["status"] == "ok"]
+    ok = [r for r in rows if r["status"] in files.FINISHED_STATUSES]
+    hot = sum(r["status"] == "hot" for r in rows)
     n_cases = len(meta.get("cases", [])) or len(rows)
     items = [Item("text", "Sweep", text=(f"Base case {meta.get('case')}, condition {meta.get('condition')}; "
-                                         f"swept: {', '.join(params)}. {len(ok)} of {n_cases} cases ok, "
-                                         f"{len(rows) - len(ok)} failed, {n_cases - len(rows)} not run."))]
+                                         f"swept: {', '.join(params)}. {len(ok) - hot} of {n_cases} cases ok, "
+                                         f"{hot} finished with the part still hot (status hot: their results are "
+                                         f"those of the hot part), {len(rows) - len(ok)} failed, "
+                                         f"{n_cases - len(rows)} not run."))]
     outputs = response_columns(ok)
     header = ["case", "status", *params, *outputs]
     items.append(Item("table", "Results (key outputs; all columns in results.csv)", header=header,
                       rows=[[r.get(c) for c in header] for r in rows]))
-    failed = [[r["case"], r.get("error")] for r in rows if r["status"] != "ok"]
+    failed = [[r["case"], r.get("error")] for r in rows if r["status"] not in files.FINISHED_STATUSES]
     if failed:
         items.append(Item("table", "Failed cases", header=["case", "error"], rows=failed))
     missing = []
@@ -323,7 +333,8 @@ def comparison_section(runs: list[RunResults]) -> Section:
         return d
 
     items = [Item("table", "Key outputs", header=["run", *[k for k, _ in keys]],
-                  rows=[[r.title, *[get(r.summary or {}, p) for _, p in keys]] for r in runs])]
+                  rows=[[r.title, files.run_status(r.summary), *[get(r.summary or {}, p) for _, p in keys[1:]]]
+                        for r in runs])]
     labels = [f"{r.title} ({r.path.name})" for r in runs]
     probes = [n for n in dict.fromkeys(k for r in runs if r.probes for k in r.probes) if n != "time_s"]
     panels = {name[:-2] if name.endswith("_C") else name:

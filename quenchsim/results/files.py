@@ -18,7 +18,46 @@ RESIDUAL_TRAVERSE_CSV = "residual_hoop_traverse.csv"
 OUTLINE_CSV = "outline.csv"
 """The section outline before and after: ``r_before_mm,z_before_mm,r_after_mm,z_after_mm``."""
 SUMMARY_JSON = "summary.json"
-"""Machine-readable results and the run's status (``ok`` / ``failed`` / ``interrupted``)."""
+"""Machine-readable results and the run's status (``ok`` / ``hot`` / ``failed`` / ``interrupted``)."""
+FINISHED_STATUSES = ("ok", "hot")
+"""The statuses of a run that went through all its stages: ``ok``, the part cooled to ``air.until_max_C`` and was
+closed at room temperature; ``hot``, the stages ended with the part hotter than that (every result is that of the
+hot part). ``failed`` and ``interrupted`` runs stopped before the end."""
 CHECKPOINT_NPZ = "checkpoint.npz"
 """The whole state of an unfinished run (stage ends, every ``output.checkpoint_minutes``, on SIGTERM/Ctrl-C), from
 which ``quenchsim run ... --resume`` continues; removed when the run completes."""
+
+RUN_OUTPUTS = (SERIES_PVD, f"{SERIES_NAME}_*.vtu", FINAL_3D_VTU, PROBES_CSV, HARDNESS_TRAVERSE_CSV,
+               RESIDUAL_TRAVERSE_CSV, OUTLINE_CSV, SUMMARY_JSON, SUMMARY_JSON + ".tmp", MESH_MSH)
+"""What a run writes (glob patterns) that a new run into the same folder replaces: cleared when it starts, so no
+frame or summary of an earlier run is left beside its own (case.toml is rewritten; ``uncertainty/`` is a cache)."""
+RUN_MARKERS = (CASE_TOML, SUMMARY_JSON, CHECKPOINT_NPZ, SERIES_PVD)
+"""A folder holding one of these is a quenchsim run folder (case.toml is the first file a run writes)."""
+
+
+def run_status(summary: dict | None) -> str:
+    """The status of a run from its summary, told as it is: ``hot`` for a summary written before that status existed
+    whose part was still hot at the end (status ``ok`` with ``end_state.at_room_temperature`` false)."""
+    if not summary:
+        return "no summary.json"
+    status = str(summary.get("status", "unknown"))
+    if status == "ok" and summary.get("end_state", {}).get("at_room_temperature") is False:
+        return "hot"
+    return status
+
+
+def status_warning(summary: dict | None) -> str | None:
+    """One sentence saying why a run's results are not those of the finished, cooled part (None when they are)."""
+    status = run_status(summary)
+    if status == "ok" or summary is None:
+        return None
+    end = summary.get("end_state", {})
+    if status == "hot":
+        hottest, at = end.get("max_temperature_C", float("nan")), end.get("time_s", float("nan"))
+        return (f"the part is still hot at the end of the run (up to {hottest:.0f} C at t = {at:.0f} s): "
+                "temperatures, phases, hardness, dimensions and stresses are those of the hot part, not of the "
+                "cooled one (lengthen air.time_s)")
+    at = summary.get("stopped_at_s")
+    when = f" at t = {at:.4g} s" if isinstance(at, (int, float)) else ""
+    return (f"the run did not finish (status {status}{when}): every result is the state where it stopped, not that "
+            "of the quenched and cooled part")

@@ -97,7 +97,9 @@ def hardness_summary(profile: Profile, p1: skfem.Basis, final: FinalSection, hrc
     r_core = r_bore + 1e-6 if solid else 0.5 * (r_bore + r_od)
     core = float((final.p1.probes(np.array([[r_core], [z_mid]])) @ hrc_nodal)[0])
     table = {"depth_mm": depth, "surface_HRC": surface, "core_HRC": core, "threshold_HRC": HRC_THRESHOLD,
-             "through_hardened": bool(np.nanmin(hrc_nodal) >= HRC_THRESHOLD)}
+             "through_hardened": bool(np.nanmin(hrc_nodal) >= HRC_THRESHOLD),
+             # the mid-width traverse never falls below the threshold: its depths are the wall, not a case depth
+             "through_hardened_mid": bool(np.nanmin(traverse["od"][1]) >= HRC_THRESHOLD)}
     return table, traverse
 
 

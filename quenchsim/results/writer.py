@@ -19,6 +19,25 @@ from quenchsim.io.revolve import revolve_vtu
 from quenchsim.results import files
 
 
+def claim_run_folder(out_dir: str | Path, force: bool = False) -> None:
+    """Make ``out_dir`` ready for a new (not resumed) run, before anything is written: a missing or empty folder
+    is used as it is; a quenchsim run folder (:data:`files.RUN_MARKERS`) loses its earlier run's outputs
+    (:data:`files.RUN_OUTPUTS`); any other non-empty folder is refused (a one-line :class:`InputError`) unless
+    ``force``, which writes the run into it and removes nothing else."""
+    out = Path(out_dir)
+    if not out.is_dir() or not any(out.iterdir()):
+        if out.exists() and not out.is_dir():
+            raise InputError("out", str(out), "is a file, not a folder; choose a folder for the run")
+        return
+    if not force and not any((out / name).exists() for name in files.RUN_MARKERS):
+        raise InputError("out", str(out), "is a non-empty folder that is not a quenchsim run (no "
+                         f"{files.CASE_TOML}); choose a new or empty folder, or pass --force to write into it")
+    for pattern in files.RUN_OUTPUTS:
+        for path in out.glob(pattern):
+            if path.is_file():
+                path.unlink()
+
+
 class RunWriter:
     """The writer of one run folder (created if missing)."""
 

@@ -139,6 +139,15 @@ def test_cli_json_and_outputs(tmp_path, capsys):
     assert spec.shape == (1801, 4)
 
 
+def test_cli_without_out_writes_under_runs(tmp_path, monkeypatch, capsys):
+    """Without --out the verb wrote a runout_<stem> folder into the current directory (issue 36)."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["bearings", "runout", str(CASES / "runout_695_inner9.toml"), "--json", "--no-plots"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [p.name for p in tmp_path.iterdir()] == ["runs"]
+    assert pathlib.Path(data["trajectory_csv"]).parent == pathlib.Path("runs") / "runout_695_inner9"
+
+
 def test_cli_bad_input_exit_2(tmp_path, capsys):
     bad = tmp_path / "bad.toml"
     bad.write_text((CASES / "runout_695_inner9.toml").read_text().replace("balls = 8", "balls = 0"))

@@ -16,13 +16,21 @@ from quenchsim.bearings.runout.output import summary, write_spectra_csv, write_t
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("input", type=pathlib.Path, help="run-out case file (TOML), see cases/runout_*.toml")
     parser.add_argument("--out", type=pathlib.Path, default=None,
-                        help="output directory (default: ./runout_<input stem>)")
+                        help="output directory (default: runs/runout_<input stem>, or runs/<input stem> when that "
+                             "starts with runout, below the current directory)")
     parser.add_argument("--no-plots", action="store_true", help="skip the orbit and spectrum PNGs")
+
+
+def default_out(input_path: pathlib.Path) -> pathlib.Path:
+    """Where a run-out case writes without --out: under runs/, as `quenchsim run` does (never a loose folder in the
+    current directory)."""
+    stem = input_path.stem
+    return pathlib.Path("runs") / (stem if stem.startswith("runout") else f"runout_{stem}")
 
 
 def run(args: argparse.Namespace) -> dict:
     case = load_case(args.input)
-    out = args.out if args.out is not None else pathlib.Path(f"runout_{args.input.stem}")
+    out = args.out if args.out is not None else default_out(args.input)
     result = run_case(case)
     csv = write_trajectory_csv(result, out / "trajectory.csv")
     data = summary(result, csv)
