@@ -159,6 +159,9 @@ def test_negative_numbers_in_case_fields():
       "quench.bath.od_jet_sped_mm_s": 8000}, "quench.bath.od_jet_sped_mm_s = 8000: unknown key"),
     ({"conditions.1.quench.bath.od_jet_speed_mm_s": 8000}, "conditions.1.quench.bath.od_jet_speed_mm_s = 8000: sets "
                                                            "the case as run"),
+    # one austenitising temperature: a second name in [mechanics] was silently replaced by the process's
+    ({"mechanics.austenitizing_T_C": 900.0}, "mechanics.austenitizing_T_C = 900.0: is not a mechanics option: a case "
+                                             "has one austenitising temperature, process.austenitising_temperature_C"),
 ])
 def test_absurd_inputs_are_one_line_errors_before_any_work(override, message):
     with pytest.raises(InputError, match=re.escape(message)):

@@ -106,9 +106,18 @@ def _table(data: Mapping[str, Any], name: str) -> Mapping[str, Any]:
 
 
 def _mechanics_keys() -> tuple[str, ...]:
+    """The keys of a case's [mechanics]: the solver options less the austenitising temperature, which a case sets
+    once, as process.austenitising_temperature_C (the run hands it to the mechanics)."""
     from quenchsim.mechanics import OPTION_KEYS
 
-    return ("enabled", "fixed_point_mm", *OPTION_KEYS)
+    return ("enabled", "fixed_point_mm", *(k for k in OPTION_KEYS if k != "austenitizing_T_C"))
+
+
+def _no_second_austenitising_temperature(m: Mapping[str, Any], where: str) -> None:
+    for key in ("austenitizing_T_C", "austenitising_T_C", "austenitising_temperature_C"):
+        if key in m:
+            raise InputError(f"{where}.{key}", m[key], "is not a mechanics option: a case has one austenitising "
+                             "temperature, process.austenitising_temperature_C (the stress-free state too); set that")
 
 
 def _condition_keys(name: str, condition: Any) -> None:
@@ -121,6 +130,8 @@ def _condition_keys(name: str, condition: Any) -> None:
     for key in condition:
         require(key in TABLE_KEYS[""] and key != "conditions", f"{where}.{key}", condition[key],
                 f"unknown table or key; [{where}] takes {', '.join(k for k in TABLE_KEYS[''] if k != 'conditions')}")
+    if isinstance(condition.get("mechanics"), Mapping):
+        _no_second_austenitising_temperature(condition["mechanics"], f"{where}.mechanics")
     for table, allowed in (*((k, v) for k, v in TABLE_KEYS.items() if k), ("mechanics", _mechanics_keys())):
         if isinstance(condition.get(table), Mapping):
             require_known_keys(condition[table], allowed, f"{where}.{table}")
@@ -322,6 +333,7 @@ def _mechanics(data: Mapping[str, Any], material: str, process: ProcessSpec) -> 
 
     m = data.get("mechanics", {})
     require(isinstance(m, Mapping), "mechanics", m, "must be a table")
+    _no_second_austenitising_temperature(m, "mechanics")
     require_known_keys(m, _mechanics_keys(), "mechanics")
     enabled = m.get("enabled", True)
     require(isinstance(enabled, bool), "mechanics.enabled", enabled, "must be true or false")
