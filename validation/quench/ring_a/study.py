@@ -78,6 +78,8 @@ def run(workdir: Path) -> dict[str, Any]:
             "core_HRC": s["hardness"]["core_HRC"], "dimensions_mm": s.get("dimensions_mm"),
             "distortion_budget_mm": s.get("distortion_budget_mm"), "shape_mm": s.get("shape_mm"),
             "phases_final": s.get("phases_final"), "residual_stress_MPa": s.get("residual_stress_MPa")}
+    change = {c: A[c]["dimensions_mm"]["change"] for c in CONDITIONS}
+    metrics["trends_mm"] = {f"c{c}_minus_c1_{d}": change[c][d] - change["1"][d] for c in ("2", "3") for d in ("id", "od")}
     plots = [cooling_plot(runs[c], f"A{c}", f"case A, condition {c}", workdir) for c in CONDITIONS]
     _png(workdir / "validation_A1_maps.png", report_plots.field_maps(
         runs["1"].frame, [("hardness_HRC", "hardness (HRC)", "viridis", None, None),
@@ -162,6 +164,33 @@ def dims_row(label: str, d: dict[str, Any] | None) -> str:
             f"{c['width']:+.3f} |")
 
 
+def what_holds_it_back(cond: dict[str, Any]) -> list[str]:
+    """The report's statements on ring A's size (it shrinks in condition 1; condition 2 less, condition 3 more) against
+    the run, each with the budget part that decides it (issue 33)."""
+    part = lambda c, p, d: cond[c]["distortion_budget_mm"]["parts"][p][d]  # noqa: E731
+    ch = lambda c, d: cond[c]["dimensions_mm"]["change"][d]  # noqa: E731
+    names = {"free_strain": "free strain", "thermal_plasticity": "thermal plasticity",
+             "transformation_plasticity": "TRIP"}
+
+    def split(c: str, d: str, ref: str | None = None) -> str:
+        return ", ".join(f"{n} {part(c, p, d) - (part(ref, p, d) if ref else 0.0):+.3f}" for p, n in names.items())
+
+    ok = lambda flag: "met" if flag else "**missed**"  # noqa: E731
+    return ["### The report's statements on the size, and what decides them", "",
+            "| statement | computed (ID / OD mm) | | parts of the ID change (mm) |", "|---|---|---|---|",
+            f"| condition 1 shrinks (measured -0.40 / -0.30) | {ch('1', 'id'):+.3f} / {ch('1', 'od'):+.3f} | "
+            f"{ok(ch('1', 'id') < 0 and ch('1', 'od') < 0)} | {split('1', 'id')} |",
+            f"| condition 2 shrinks less than 1 | {ch('2', 'id') - ch('1', 'id'):+.3f} / {ch('2', 'od') - ch('1', 'od'):+.3f} | "
+            f"{ok(ch('2', 'id') > ch('1', 'id'))} | 2 - 1: {split('2', 'id', '1')} |",
+            f"| condition 3 shrinks more than 1 | {ch('3', 'id') - ch('1', 'id'):+.3f} / {ch('3', 'od') - ch('1', 'od'):+.3f} | "
+            f"{ok(ch('3', 'id') < ch('1', 'id'))} | 3 - 1: {split('3', 'id', '1')} |", "",
+            "The free strain of the final phases (martensite and retained austenite against the annealed ring) makes the "
+            "ring grow in every condition; what can make it shrink is plastic flow, the hot core yielding against the "
+            "cooled shell (thermal plasticity) and transformation plasticity. The calibration (calibration/ring_a) asks "
+            "whether the hot-austenite yield, the TRIP constants and the bore flow can, inside their priors, reach the "
+            "measured change; its page says where they land.", ""]
+
+
 def page(metrics: dict[str, Any]) -> str:
     rel, cond = metrics["relative_to_condition_1"], metrics["conditions"]
     md = ["Reference: the heat-treatment report summarised in docs/reference/quench_cases.md (measured and published values with "
@@ -186,6 +215,7 @@ def page(metrics: dict[str, Any]) -> str:
     md += [dims_row(f"quenchsim condition {c}", s["dimensions_mm"]) for c, s in cond.items()]
     md += ["", "### Shape", ""] + shape_table(cond)
     md += ["### Old versus new", ""] + old_versus_new(model_history(__file__), cond, ("ID", "OD", "width"))
+    md += what_holds_it_back(cond)
     md += ["### Distortion budget: what makes the ring grow or shrink", "",
            "Each strain part applied alone to the section (final moduli, the run's supports); the parts add up to the "
            "dimension change (`sum - total`). Method: quenchsim/mechanics/budget.py, README \"What a run writes\".", ""]
