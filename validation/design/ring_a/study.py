@@ -12,8 +12,9 @@ from quenchsim.validation import study_module
 TITLE = "Design study, case A: ID/OD jet speeds for the least raceway diameter change and crown at condition 1's hardness"
 SLOW = True
 STUDY_FILE = Path(__file__).with_name("ring_a.study.toml")
-NOTE_A = ("Ring A is not through-hardened: its HRC58 depth below the raceway depends on the ID jets, so the hardness "
-          "constraint bounds the search. The lead re-runs this study when the bath model of issue 33 lands.")
+NOTE_A = ("Ring A is not through-hardened: its HRC58 depth below the raceway depends on both jets, on a knife edge "
+          "(either jet at the fast end of its range alone hardens the wall through, quench/process_response), so the "
+          "hardness constraint bounds the search. Physics of issue 33 (see the ring_b page's note).")
 
 
 def run(workdir: Path) -> dict[str, Any]:

@@ -105,8 +105,9 @@ def design_page(metrics: dict[str, Any], note: str) -> str:
     return "\n".join(md)
 
 
-NOTE_B = ("The page reports what the current chain (today's bath model) predicts; the lead re-runs this study when "
-          "the bath model of issue 33 lands.")
+NOTE_B = ("The page reports the chain with issue 33's physics (hot austenite from published laws, the pearlite-calibrated "
+          "SUJ3, the jet bath with Berenson's film collapse fixed); ring B hardens through over the whole box, so the "
+          "hardness constraint does not bind.")
 
 
 def run(workdir: Path) -> dict[str, Any]:
