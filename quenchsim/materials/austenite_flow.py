@@ -61,13 +61,11 @@ def zener_hollomon_peak_stress_MPa(T_C: float, strain_rate_1_s: float, A_1_s: fl
 
 @dataclass(frozen=True)
 class YieldTable:
-    """Austenite yield points (T in C, yield in Pa), the prior factor that spans the laws and the rate band,
-    and the source of each point."""
+    """Austenite yield points (T in C, yield in Pa) and the prior factor that spans the laws and the rate band."""
 
     T_C: tuple[float, ...]
     yield_Pa: tuple[float, ...]
     range_factor: float
-    sources: tuple[str, ...]
 
 
 def _value(entry: Any) -> float:
@@ -103,11 +101,8 @@ def austenite_yield_table(data: dict[str, Any]) -> YieldTable:
         raise InputError("metastable.T_C", cold_T, f"must lie below the first sourced temperature {hot_T[0]:g} C")
     ln0, ln1 = math.log(meta["yield_20C_MPa"]), math.log(hot_MPa[0])
     cold_MPa = [math.exp(ln0 + (ln1 - ln0) * (T - cold_T[0]) / (hot_T[0] - cold_T[0])) for T in cold_T]
-    sources = [f"assumption ({meta['source'][:40]}...)"] * len(cold_T) + [
-        f"[C] geometric mean of KOZLOWSKI1992 (0.2 % offset) and HUO2013 peak x small-strain fraction at {rate:g} 1/s"
-    ] * len(hot_T)
     return YieldTable(T_C=tuple(cold_T + hot_T), yield_Pa=tuple(1e6 * s for s in cold_MPa + hot_MPa),
-                      range_factor=round(factor, 2), sources=tuple(sources))
+                      range_factor=round(factor, 2))
 
 
 def load_data(path: Path = DATA_FILE) -> dict[str, Any]:
@@ -117,8 +112,8 @@ def load_data(path: Path = DATA_FILE) -> dict[str, Any]:
 
 
 def _main() -> None:  # pragma: no cover - prints the material row
-    table = austenite_yield_table(load_data())
     data = load_data()
+    table = austenite_yield_table(data)
     rate = _value(data["strain_rate_1_s"])
     print(f"{'T_C':>6} {'KOZ MPa':>8} {'HUO MPa':>8} {'yield MPa':>9}")
     for T, s in zip(table.T_C, table.yield_Pa):

@@ -22,6 +22,7 @@ import tomli_w
 from quenchsim.case import load_case
 from quenchsim.materials import materials_dir
 from quenchsim.pipeline import run as run_case
+from quenchsim.validation import study_module
 
 ROOT = pathlib.Path(__file__).resolve().parents[3]
 CASE = ROOT / "cases" / "crb_outer_ring.toml"
@@ -49,12 +50,7 @@ def depth_at(factor: float, work: pathlib.Path, material_file: pathlib.Path | No
     path.with_name(f"{path.stem}.mechanics.toml").write_bytes(mech.read_bytes())
     case = load_case(CASE, "1", {"mechanics.enabled": False, "material": str(path)})
     res = run_case(case, work / f"run_p{factor:.4f}", progress=False)
-    import sys
-
-    sys.path.insert(0, str(pathlib.Path(__file__).parent))
-    from study import _centre_fractions
-
-    centre = _centre_fractions(work / f"run_p{factor:.4f}")
+    centre = study_module("materials/SUJ3")._centre_fractions(work / f"run_p{factor:.4f}")
     h = res.summary["hardness"]
     return {"factor": factor, "depth_mm": float(h["depth_mm"]["HRC58_bore_mid"]), "core_HRC": float(h["core_HRC"]),
             **{f"P1_{k}": v for k, v in centre.items()}}

@@ -4,7 +4,6 @@
 from __future__ import annotations
 
 import csv
-import glob
 import pathlib
 
 import meshio
@@ -19,6 +18,7 @@ from quenchsim.materials import load_material, materials_dir
 from quenchsim.metallurgy import hv_to_hrc, load_kinetics
 from quenchsim.metallurgy.cct import critical_rate_C_s
 from quenchsim.pipeline import run as run_case
+from quenchsim.results import last_frame
 
 TITLE = "SUJ3: kinetics from the closest published data (100Cr6) + the ring A condition-1 calibration point"
 SLOW = True
@@ -29,7 +29,7 @@ JOMINY_MM = np.array([1.5, 3.0, 5.0, 7.9, 10.0, 12.7, 15.9, 20.0, 25.0, 30.0, 40
 
 def _centre_fractions(out: pathlib.Path) -> dict[str, float]:
     """Phase fractions at the section centre (P1) from the last results file."""
-    m = meshio.read(sorted(glob.glob(str(out / "results_*.vtu")))[-1])
+    m = meshio.read(last_frame(out))
     p = m.points[:, :2]
     centre = 0.5 * (p.min(axis=0) + p.max(axis=0))
     k = int(np.argmin(np.sum((p - centre) ** 2, axis=1)))
@@ -39,7 +39,7 @@ def _centre_fractions(out: pathlib.Path) -> dict[str, float]:
 def wall_profile(out: pathlib.Path) -> dict[str, list[float]]:
     """Phase fractions and hardness through the wall at mid-width, from the bore (depth 0) to the OD, from the last
     results file (the nodes nearest the mid-width plane)."""
-    m = meshio.read(sorted(glob.glob(str(out / "results_*.vtu")))[-1])
+    m = meshio.read(last_frame(out))
     r, z = m.points[:, 0], m.points[:, 1]
     z_mid = 0.5 * (z.min() + z.max())
     near = np.abs(z - z_mid) <= np.sort(np.abs(z - z_mid))[min(60, z.size - 1)]
