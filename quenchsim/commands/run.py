@@ -1,4 +1,4 @@
-"""`quenchsim run CASE.toml --condition NAME --out DIR [--mesh-size MM] [--set KEY=VALUE ...] [--resume] [--force]
+"""`quenchsim run CASE.toml|NAME --condition NAME --out DIR [--mesh-size MM] [--set KEY=VALUE ...] [--resume] [--force]
 [--uncertainty N [--posterior DIR]]`."""
 
 from __future__ import annotations
@@ -11,6 +11,7 @@ from pathlib import Path
 from quenchsim.case import load_case
 from quenchsim.errors import InputError
 from quenchsim.results import files
+from quenchsim.shipped import resolve_case
 
 
 def parse_sets(items: list[str]) -> dict[str, object]:
@@ -30,7 +31,7 @@ def parse_sets(items: list[str]) -> dict[str, object]:
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("case", type=Path, help="case file (TOML)")
+    parser.add_argument("case", type=Path, help="case file (TOML), or the name of a shipped case (quenchsim cases)")
     parser.add_argument("--condition", help="named condition of the case file")
     parser.add_argument("--out", type=Path, help="output directory (default runs/<case>_<condition>)")
     parser.add_argument("--mesh-size", type=float, help="core element size in mm (surface size scales with it)")
@@ -54,7 +55,7 @@ def run(args: argparse.Namespace) -> int:
     from quenchsim.pipeline import run as run_case
 
     overrides = parse_sets(args.set)
-    case = load_case(args.case, args.condition, overrides)
+    case = load_case(resolve_case(args.case), args.condition, overrides)
     if args.mesh_size is not None:
         if args.mesh_size <= 0:
             raise InputError("--mesh-size", args.mesh_size, "must be > 0 (mm)")

@@ -1,0 +1,77 @@
+"""The data quenchsim ships (issue 36): its cases found by name, from a checkout and from a wheel's layout, listed and
+copied by `quenchsim cases`."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import quenchsim.shipped as shipped
+from quenchsim.case import load_case
+from quenchsim.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+SHIPPED_CASES = sorted(p.stem for p in (ROOT / "cases").glob("*.toml"))
+
+
+def _one_line_error(capsys) -> str:
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and err.startswith("quenchsim: error: "), err
+    return err
+
+
+# --- the shipped cases, by name ---------------------------------------------------------------------------------
+
+def test_cases_lists_every_shipped_case_with_description_and_conditions(capsys):
+    assert main(["cases"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert [ln.split()[0] for ln in lines] == SHIPPED_CASES
+    ring_a = next(ln for ln in lines if ln.startswith("crb_outer_ring "))
+    assert "Cylindrical-roller-bearing outer ring (case A)" in ring_a and "[conditions: 1, 2, 3]" in ring_a
+
+
+def test_cases_copy_writes_the_file_and_never_overwrites_without_force(tmp_path, capsys):
+    target = tmp_path / "mine" / "crb_outer_ring.toml"
+    assert main(["cases", "copy", "crb_outer_ring", str(tmp_path / "mine")]) == 0
+    assert target.read_text() == (ROOT / "cases" / "crb_outer_ring.toml").read_text()
+    target.write_text("# my edits\n")
+    assert main(["cases", "copy", "crb_outer_ring", str(tmp_path / "mine")]) == 2
+    err = _one_line_error(capsys)
+    assert "DIR = " in err and "already holds crb_outer_ring.toml" in err and "--force" in err
+    assert target.read_text() == "# my edits\n"   # untouched
+    assert main(["cases", "copy", "crb_outer_ring", str(tmp_path / "mine"), "--force"]) == 0
+    assert target.read_text() == (ROOT / "cases" / "crb_outer_ring.toml").read_text()
+
+
+def test_an_unknown_case_name_lists_the_shipped_ones_before_any_work(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["cases", "copy", "crb_outer", str(tmp_path)]) == 2
+    err = _one_line_error(capsys)
+    assert "NAME = 'crb_outer'" in err and "crb_outer_ring, " in err and "srb_outer_ring" in err
+    assert main(["run", "crb_outer", "--condition", "1", "--out", str(tmp_path / "run"), "--quiet"]) == 2
+    err = _one_line_error(capsys)
+    assert "case = 'crb_outer': no such file and no shipped case of that name" in err and "crb_outer_ring" in err
+    assert not (tmp_path / "run").exists()
+
+
+def test_a_bare_name_is_a_shipped_case_and_a_path_stays_a_path(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert shipped.resolve_case("crb_outer_ring") == ROOT / "cases" / "crb_outer_ring.toml"
+    case = load_case(shipped.resolve_case("crb_outer_ring"), "1")
+    assert case.name == "crb_outer_ring" and case.material == "SUJ3"
+    assert shipped.resolve_case("my/crb_outer_ring") == Path("my/crb_outer_ring")
+    assert shipped.resolve_case("crb_outer_ring.toml") == Path("crb_outer_ring.toml")
+    (tmp_path / "crb_outer_ring").write_text("")   # an existing file of that name is the user's
+    assert shipped.resolve_case("crb_outer_ring") == Path("crb_outer_ring")
+
+
+def test_a_wheel_finds_its_cases_inside_the_package(tmp_path, monkeypatch):
+    """An installed wheel has no cases/ beside the package: setup.py copies them to quenchsim/_data/cases."""
+    assert "cases" in (ROOT / "setup.py").read_text().split("DATA_FOLDERS = ")[1].splitlines()[0]
+    package = tmp_path / "site-packages" / "quenchsim"
+    (package / "_data" / "cases").mkdir(parents=True)
+    shutil.copyfile(ROOT / "cases" / "srb_outer_ring.toml", package / "_data" / "cases" / "srb_outer_ring.toml")
+    monkeypatch.setattr(shipped, "PACKAGE", package)
+    assert [c.name for c in shipped.shipped_cases()] == ["srb_outer_ring"]
+    assert shipped.resolve_case("srb_outer_ring") == package / "_data" / "cases" / "srb_outer_ring.toml"
+    assert shipped.shipped_cases()[0].conditions == ("4", "5", "6")
