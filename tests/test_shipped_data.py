@@ -1,14 +1,21 @@
 """The data quenchsim ships (issue 36): its cases found by name, from a checkout and from a wheel's layout, listed and
-copied by `quenchsim cases`."""
+copied by `quenchsim cases`; its materials never overwritten by the fitters; a fitted steel named as the user's;
+a steel without mechanics data refused for a mechanics run instead of silently skipping the mechanics."""
 
 from __future__ import annotations
 
 import shutil
+import tomllib
 from pathlib import Path
+
+import pytest
 
 import quenchsim.shipped as shipped
 from quenchsim.case import load_case
 from quenchsim.cli import main
+from quenchsim.commands.material import name_as_users
+from quenchsim.commands.run import require_mechanics_data, summary_table
+from quenchsim.errors import InputError
 
 ROOT = Path(__file__).resolve().parents[1]
 SHIPPED_CASES = sorted(p.stem for p in (ROOT / "cases").glob("*.toml"))
@@ -75,3 +82,60 @@ def test_a_wheel_finds_its_cases_inside_the_package(tmp_path, monkeypatch):
     assert [c.name for c in shipped.shipped_cases()] == ["srb_outer_ring"]
     assert shipped.resolve_case("srb_outer_ring") == package / "_data" / "cases" / "srb_outer_ring.toml"
     assert shipped.shipped_cases()[0].conditions == ("4", "5", "6")
+
+
+# --- the fitters never overwrite shipped data, and name what they write after the user ---------------------------
+
+def test_material_fit_refuses_a_shipped_steel_before_reading_its_data(tmp_path, capsys):
+    before = (ROOT / "materials" / "SUJ2.toml").read_bytes()
+    assert main(["material", "fit", str(tmp_path / "no_data_yet.toml"), "--out", str(ROOT / "materials" / "SUJ2.toml")]) == 2
+    err = _one_line_error(capsys)
+    assert "--out = " in err and "materials/SUJ2.toml" in err and "never overwritten" in err
+    assert (ROOT / "materials" / "SUJ2.toml").read_bytes() == before
+
+
+def test_a_fitted_steel_carries_the_users_name_not_the_base_steels(tmp_path):
+    out = tmp_path / "MY_STEEL.toml"
+    shutil.copyfile(ROOT / "materials" / "SUJ2.toml", out)
+    name_as_users(out, "MY_STEEL: kinetics fitted to my data")
+    mine, base = tomllib.loads(out.read_text()), tomllib.loads((ROOT / "materials" / "SUJ2.toml").read_text())
+    assert mine["name"] == "MY_STEEL" and mine["description"] == "MY_STEEL: kinetics fitted to my data"
+    assert {k: v for k, v in mine.items() if k not in ("name", "description")} == \
+        {k: v for k, v in base.items() if k not in ("name", "description")}
+
+
+# --- a steel without mechanics data is never run as if its dimensions were computed ------------------------------
+
+def _user_steel_case(tmp_path: Path, with_mechanics: bool) -> Path:
+    steel = tmp_path / "steels" / "MY_STEEL.toml"
+    steel.parent.mkdir(parents=True)
+    shutil.copyfile(ROOT / "materials" / "SUJ3.toml", steel)
+    if with_mechanics:
+        shutil.copyfile(ROOT / "materials" / "SUJ3.mechanics.toml", steel.with_name("MY_STEEL.mechanics.toml"))
+    text = (ROOT / "cases" / "crb_outer_ring.toml").read_text().replace('material = "SUJ3"',
+                                                                       'material = "steels/MY_STEEL.toml"')
+    case = tmp_path / "ring.toml"
+    case.write_text(text)
+    return case
+
+
+def test_a_steel_without_mechanics_is_refused_with_the_file_and_the_way_out(tmp_path, capsys):
+    case = _user_steel_case(tmp_path, with_mechanics=False)
+    out = tmp_path / "run"
+    assert main(["run", str(case), "--condition", "1", "--out", str(out), "--quiet"]) == 2
+    err = _one_line_error(capsys)
+    assert "MY_STEEL.mechanics.toml" in err and "--set mechanics.enabled=false" in err
+    assert not out.exists()
+    with pytest.raises(InputError, match="has no mechanics data"):
+        require_mechanics_data(load_case(case, "1"))
+    require_mechanics_data(load_case(case, "1", {"mechanics.enabled": False}))   # the user's choice: passes
+    require_mechanics_data(load_case(_user_steel_case(tmp_path / "b", with_mechanics=True), "1"))
+
+
+def test_the_terminal_says_when_no_dimensions_were_computed():
+    summary = {"case": "ring", "condition": "1", "status": "ok", "end_state": {"at_room_temperature": True},
+               "solver": {"steps": 10, "wall_time_s": 1.0}, "probes": {}}
+    table = summary_table(summary, Path("runs/x"))
+    assert "no mechanics in this run: no dimensions" in table
+    summary["dimensions_mm"] = {"before": {"id": 1.0}, "after": {"id": 1.1}, "change": {"id": 0.1}}
+    assert "no mechanics" not in summary_table(summary, Path("runs/x"))
