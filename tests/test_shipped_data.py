@@ -94,6 +94,15 @@ def test_material_fit_refuses_a_shipped_steel_before_reading_its_data(tmp_path, 
     assert (ROOT / "materials" / "SUJ2.toml").read_bytes() == before
 
 
+def test_quenchant_fit_refuses_a_shipped_oil_before_reading_the_curve(tmp_path, capsys):
+    shipped_oil = ROOT / "materials" / "quenchants" / "astm_d6200_fast_oil.toml"
+    before = shipped_oil.read_bytes()
+    assert main(["quenchant", "fit", str(tmp_path / "no_curve.csv"), "--out", str(shipped_oil)]) == 2
+    err = _one_line_error(capsys)
+    assert "materials/quenchants/astm_d6200_fast_oil.toml" in err and "never overwritten" in err
+    assert shipped_oil.read_bytes() == before
+
+
 def test_a_fitted_steel_carries_the_users_name_not_the_base_steels(tmp_path):
     out = tmp_path / "MY_STEEL.toml"
     shutil.copyfile(ROOT / "materials" / "SUJ2.toml", out)
