@@ -18,6 +18,7 @@ from quenchsim.errors import QuenchsimError, RunInterrupted
 
 COMMANDS: dict[str, tuple[str, str]] = {
     "run": ("quenchsim.commands.run", "run one case and condition, write VTK/probes/summary"),
+    "cases": ("quenchsim.commands.cases", "list the shipped cases, or copy one into your folder"),
     "mesh": ("quenchsim.commands.mesh", "build and write the section mesh of a case"),
     "cct": ("quenchsim.commands.cct", "plot the CCT diagram implied by a material's kinetics"),
     "ttt": ("quenchsim.commands.ttt", "print/plot the TTT diagram of a material's kinetics, with its fitted data"),

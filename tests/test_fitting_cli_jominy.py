@@ -50,6 +50,9 @@ def test_material_fit_cli_writes_file_and_prints_residuals(tmp_path):
     r = _cli("material", "fit", str(_ttt_file(tmp_path)), "--out", str(out), "--plots", str(tmp_path / "plots"))
     assert r.returncode == 0, r.stderr
     assert "bainite start time" in r.stdout and "tau_ref_s" in r.stdout
+    written = tomllib.loads(out.read_text())   # the user's steel, named after the file, not the base "SUJ2"
+    assert written["name"] == "MY_STEEL" and "SUJ2" in written["description"] and "bainite_ttt.toml" in written["description"]
+    assert "note: no MY_STEEL.mechanics.toml beside it" in r.stdout
     fitted = tomllib.loads(out.read_text())["kinetics"]["bainite"]["tau_ref_s"]["value"]
     shipped = load_material("SUJ2")["kinetics"]["bainite"]["tau_ref_s"]["value"]
     assert fitted == pytest.approx(shipped, rel=1e-3)   # the SUJ2 model's own times give back its tau_ref

@@ -4,16 +4,24 @@ Fits the free ``c_curve`` parameters named in the data file's [fit] tables by in
 additivity along every data point (:mod:`quenchsim.fitting.kinetics`), prints the parameters and the residual of
 every point, and writes the data file's base material with the fitted reactions and the fit record (data file,
 residuals, sources). A parameter the data cannot constrain stops the fit with its name (exit 2).
+
+The written steel is the user's: its ``name`` is the output file's stem and its ``description`` says what it was fitted
+to (the base material's are not kept); an ``--out`` that is a file quenchsim ships is refused before any work. The fit
+writes no mechanics data: a run of the steel needs ``NAME.mechanics.toml`` beside it, or
+``--set mechanics.enabled=false`` (docs/guide/bring_a_steel.md).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import re
+import tomllib
 from pathlib import Path
 
 from quenchsim.fitting import kinetics as fk
 from quenchsim.fitting.diagram_data import load_diagram_data
+from quenchsim.shipped import refuse_shipped_file
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -25,11 +33,27 @@ def configure(parser: argparse.ArgumentParser) -> None:
     fit.add_argument("--json", action="store_true", help="print one JSON object instead of the tables")
 
 
+def name_as_users(path: Path, description: str) -> None:
+    """Set the top-level ``name`` (the file's stem) and ``description`` of the material file ``path``, which
+    :func:`quenchsim.fitting.kinetics.write_material` copies from the base material (a fitted steel went on
+    calling itself "SUJ2")."""
+    text = path.read_text()
+    header = re.search(r"^\[", text, flags=re.MULTILINE)
+    head, tables = (text[:header.start()], text[header.start():]) if header else (text, "")
+    head = re.sub(r"^(name|description)\s*=.*\n?", "", head, flags=re.MULTILINE)
+    own = f"name = {json.dumps(path.stem)}\ndescription = {json.dumps(description)}\n"
+    path.write_text(head.rstrip("\n") + ("\n" if head.strip() else "") + own + "\n" + tables)
+    tomllib.loads(path.read_text())   # still valid TOML
+
+
 def run(args: argparse.Namespace) -> int:
+    refuse_shipped_file(args.out)
     data = load_diagram_data(args.data)
     histories = fk.jominy_histories(data, progress=not args.json)
     result = fk.fit_kinetics(data, histories)
     out = fk.write_material(result, args.out, str(args.data))
+    name_as_users(out, f"{out.stem}: kinetics fitted by `quenchsim material fit {args.data}` ({data.name}); the other "
+                       f"data from {data.material}")
     if args.plots:
         from quenchsim.fitting.plots import plot_cct_overlay, plot_jominy, plot_ttt
         from quenchsim.metallurgy import hv_to_hrc
@@ -63,6 +87,9 @@ def run(args: argparse.Namespace) -> int:
     for x in result.residuals:
         print(f"{x.where[:40]:<40} {x.quantity:<22} {x.data:9.4g} {x.model:9.4g} {x.unit:<4} {x.residual:6.2f} {x.kind}")
     print(f"wrote {out}")
+    if not (out.parent / f"{out.stem}.mechanics.toml").is_file():
+        print(f"note: no {out.stem}.mechanics.toml beside it: a run of this steel needs one for dimensions and "
+              "stresses, or --set mechanics.enabled=false (docs/guide/bring_a_steel.md)")
     return 0
 
 

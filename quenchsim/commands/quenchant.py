@@ -1,6 +1,6 @@
 """`quenchsim quenchant fit | from-datasheet | show`: a quenchant's still-bath h(T_surface) from its ISO 9950 curve.
 
-    quenchsim quenchant fit CURVE.csv --out materials/quenchants/NAME.toml --source "..." [--bath-temperature-C 40]
+    quenchsim quenchant fit CURVE.csv --out materials/quenchants/NAME.toml [--source "..."] [--bath-temperature-C 40]
                                       [--agitation-m-s 0] [--tag "..."] [--png fit.png] [--fast]
     quenchsim quenchant from-datasheet --max-rate 93 --T-max-rate 602 --rate-300 5.4 [--t600 6 --t400 10.4
                                       --t200 40] --bath-temperature-C 60 --out NAME.toml --source "..."
@@ -9,6 +9,10 @@
 CURVE.csv has a header ``time_s,temperature_C`` (centre thermocouple of the ISO 9950 probe) or
 ``temperature_C,rate_C_s`` (its cooling-rate curve). The fit is an inverse heat conduction on quenchsim's own
 thermal solver (quenchsim.fitting.quenchant); the data-sheet shortcut is an approximation and says so in the file.
+Before the fit, the curve is checked against the probe's physical bounds (quenchsim.fitting.probe_bounds: time to
+300 C, the conduction limit of its cooling rate); a fitted h(T_s) above the bound for an oil is warned about. An
+``--out`` that is a file quenchsim ships is refused; without ``--source`` the file records
+"not given by the user".
 """
 
 from __future__ import annotations
@@ -17,6 +21,10 @@ import argparse
 from pathlib import Path
 
 from quenchsim.errors import InputError
+from quenchsim.shipped import refuse_shipped_file
+
+NO_SOURCE = "not given by the user"
+"""The ``source`` written when ``--source`` is not given: a placeholder, never an invented source."""
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -43,7 +51,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--out", type=Path, required=True, help="quenchant file to write (TOML)")
     p.add_argument("--name", help="quenchant name (default: the file stem)")
-    p.add_argument("--source", required=True, help="where the curve / figures were published")
+    p.add_argument("--source", default=NO_SOURCE,
+                   help=f"where the curve / figures were published (default: \"{NO_SOURCE}\", recorded as such)")
     p.add_argument("--bath-temperature-C", dest="bath_C", type=float, default=40.0, help="bath temperature of the test")
     p.add_argument("--agitation-m-s", dest="agitation", type=float, default=0.0, help="agitation of the test (0 = still)")
     p.add_argument("--description", default="")
@@ -51,6 +60,7 @@ def _common(p: argparse.ArgumentParser) -> None:
 
 
 def _check_common(args: argparse.Namespace) -> None:
+    refuse_shipped_file(args.out)
     if not -20.0 <= args.bath_C <= 300.0:
         raise InputError("--bath-temperature-C", args.bath_C, "must lie between -20 and 300 C")
     if not args.agitation >= 0.0:
@@ -72,12 +82,16 @@ def run(args: argparse.Namespace) -> int:
             print(f"{T:>10.0f}{h:>12.0f}")
         return 0
     _check_common(args)
+    from quenchsim.fitting.probe_bounds import check_probe_plausible, htc_warning
+
     if args.action == "fit":
         data = q.read_probe_csv(args.curve)
+        check_probe_plausible(data.time_s, data.temperature_C, data.rate_C_s, where=args.curve.name)
         levels = ((100.0, 4.0),) if args.fast else ((100.0, 4.0), (50.0, 1.0))
         fit = q.fit_probe_curve(data, bath_C=args.bath_C, sigma=args.sigma, levels=levels)
         data_file = str(args.curve)
     else:
+        check_probe_plausible(None, [args.T_max_rate, 300.0], [args.max_rate, args.rate_300], where="--max-rate")
         figures = {"CRmax_C_s": args.max_rate, "T_CRmax_C": args.T_max_rate, "CR300_C_s": args.rate_300}
         figures.update({f"t_to_{t}C_s": getattr(args, f"t{t}") for t in (600, 400, 200) if getattr(args, f"t{t}") is not None})
         fit = q.fit_figures(figures, bath_C=args.bath_C, shape=q.default_shape(args.shape_from))
@@ -91,6 +105,11 @@ def run(args: argparse.Namespace) -> int:
           f"{fit.seconds:.1f} s")
     for key in ("CRmax_C_s", "T_CRmax_C", "CR300_C_s"):
         print(f"  {key}: published/measured {fit.measured.get(key, float('nan')):.1f}, re-simulated {fit.simulated[key]:.1f}")
+    warning = htc_warning(fit.T_C, fit.h_W_m2K)
+    if warning:
+        print(f"WARNING: {warning}")
+    if args.source == NO_SOURCE:
+        print(f"note: no --source given: the file records source = \"{NO_SOURCE}\"")
     if args.png:
         from quenchsim.fitting.plots import plot_probe_fit
 

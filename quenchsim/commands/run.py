@@ -1,4 +1,4 @@
-"""`quenchsim run CASE.toml --condition NAME --out DIR [--mesh-size MM] [--set KEY=VALUE ...] [--resume] [--force]
+"""`quenchsim run CASE.toml|NAME --condition NAME --out DIR [--mesh-size MM] [--set KEY=VALUE ...] [--resume] [--force]
 [--uncertainty N [--posterior DIR]]`."""
 
 from __future__ import annotations
@@ -11,6 +11,7 @@ from pathlib import Path
 from quenchsim.case import load_case
 from quenchsim.errors import InputError
 from quenchsim.results import files
+from quenchsim.shipped import resolve_case
 
 
 def parse_sets(items: list[str]) -> dict[str, object]:
@@ -30,7 +31,7 @@ def parse_sets(items: list[str]) -> dict[str, object]:
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("case", type=Path, help="case file (TOML)")
+    parser.add_argument("case", type=Path, help="case file (TOML), or the name of a shipped case (quenchsim cases)")
     parser.add_argument("--condition", help="named condition of the case file")
     parser.add_argument("--out", type=Path, help="output directory (default runs/<case>_<condition>)")
     parser.add_argument("--mesh-size", type=float, help="core element size in mm (surface size scales with it)")
@@ -54,7 +55,8 @@ def run(args: argparse.Namespace) -> int:
     from quenchsim.pipeline import run as run_case
 
     overrides = parse_sets(args.set)
-    case = load_case(args.case, args.condition, overrides)
+    case = load_case(resolve_case(args.case), args.condition, overrides)
+    require_mechanics_data(case)
     if args.mesh_size is not None:
         if args.mesh_size <= 0:
             raise InputError("--mesh-size", args.mesh_size, "must be > 0 (mm)")
@@ -85,6 +87,23 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def require_mechanics_data(case) -> None:
+    """Refuse a mechanics run of a steel that has no mechanics data, before any work: the run would compute no
+    dimensions, distortion or stresses (a fitted steel, ``material = "path/NAME.toml"``, has none until
+    ``NAME.mechanics.toml`` is put beside it). A steel that does not transform is thermal only and passes."""
+    from quenchsim.materials import load_material, transforms
+
+    if not case.mechanics.enabled:
+        return
+    material = load_material(case.material)
+    if "mechanics" in material or not transforms(material):
+        return
+    stem = Path(case.material).with_suffix("") if case.material.endswith(".toml") else Path(case.material)
+    raise InputError("material", case.material, f"has no mechanics data ({stem.name}.mechanics.toml beside it or a "
+                     "[mechanics] table in it): no dimensions or stresses could be computed; add that file "
+                     "(docs/guide/bring_a_steel.md) or run without mechanics: --set mechanics.enabled=false")
+
+
 def summary_table(s: dict, out: Path) -> str:
     """A short plain-text table of a run's key results (everything else is in summary.json)."""
     rows = [f"{s['case']} condition {s['condition'] or '-'}: status {files.run_status(s)}, "
@@ -108,6 +127,8 @@ def summary_table(s: dict, out: Path) -> str:
                                     for k, v in h["depth_mm"].items())
                         + f"; core {h['core_HRC']:.1f} HRC")
     rows += [f"note: {note}" for note in s.get("notes", [])]
+    if "dimensions_mm" not in s:   # never a silence that reads as "unchanged"
+        rows.append("note: no mechanics in this run: no dimensions, shape, distortion or residual stresses computed")
     if "dimensions_mm" in s:
         d = s["dimensions_mm"]
         rows.append(f"{'dimension (mm)':<16}{'before':>10}{'after':>10}{'change':>10}")
