@@ -81,7 +81,7 @@ def resolve_case(value: str | Path) -> Path:
     return shipped_case(str(value)).path if is_bare_name(value) else Path(value)
 
 
-def refuse_shipped_file(out: str | Path, field: str = "--out") -> None:
+def refuse_shipped_file(out: str | Path, field: str = "--out", hint: str = "") -> None:
     """Raise :class:`InputError` when ``out`` is an existing file of the shipped ``materials/`` folder: the fitters
     write the user's data beside it, never over it (an overwritten steel or oil silently changes every case and
     validation study that reads it)."""
@@ -89,4 +89,5 @@ def refuse_shipped_file(out: str | Path, field: str = "--out") -> None:
     path = Path(out).expanduser().resolve()
     if path.is_file() and path.is_relative_to(shipped):
         raise InputError(field, str(out), f"is a file quenchsim ships (materials/{path.relative_to(shipped).as_posix()}) "
-                                          "and is never overwritten: write your own under a new name or folder")
+                                          "and is never overwritten: write your own under a new name or folder"
+                                          + (f" ({hint})" if hint else ""))

@@ -117,3 +117,28 @@ def test_jominy_fit_recovers_pearlite_time_scale(tmp_path):
     result = fk.fit_kinetics(data, fk.jominy_histories(data))
     assert result.parameters["pearlite"]["tau_ref_s"] == pytest.approx(pearlite.params["tau_ref_s"], rel=0.02)
     assert np.all(np.isfinite(hv_to_hrc(hv[:2])))
+
+
+def test_material_fit_regenerating_a_steel_in_place_keeps_its_name(tmp_path):
+    """A maintainer's re-fit writes over the base steel itself: its curated name and description stay."""
+    base = tmp_path / "SUJ2.toml"
+    base.write_bytes((Path(__file__).resolve().parents[1] / "materials" / "SUJ2.toml").read_bytes())
+    data = _ttt_file(tmp_path)
+    spec = tomllib.loads(data.read_text())
+    spec["material"] = str(base)
+    data.write_text(tomli_w.dumps(spec))
+    before = tomllib.loads(base.read_text())
+    r = _cli("material", "fit", str(data), "--out", str(base))
+    assert r.returncode == 0, r.stderr
+    after = tomllib.loads(base.read_text())
+    assert (after["name"], after["description"]) == (before["name"], before["description"])
+
+
+def test_replace_shipped_lets_a_maintainer_past_the_shipped_file_check(tmp_path):
+    shipped = Path(__file__).resolve().parents[1] / "materials" / "SUJ2.toml"
+    before = shipped.read_bytes()
+    r = _cli("material", "fit", str(tmp_path / "missing.toml"), "--out", str(shipped), "--replace-shipped")
+    assert r.returncode == 2 and "never overwritten" not in r.stderr and "missing.toml" in r.stderr
+    assert shipped.read_bytes() == before
+    r = _cli("material", "fit", str(tmp_path / "missing.toml"), "--out", str(shipped))
+    assert r.returncode == 2 and "never overwritten" in r.stderr and "--replace-shipped" in r.stderr

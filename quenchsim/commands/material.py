@@ -31,6 +31,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
     fit.add_argument("--out", type=Path, required=True, help="material file to write (e.g. materials/NAME.toml)")
     fit.add_argument("--plots", type=Path, help="write CCT / TTT (/ Jominy) overlay PNGs into this folder")
     fit.add_argument("--json", action="store_true", help="print one JSON object instead of the tables")
+    fit.add_argument("--replace-shipped", action="store_true",
+                     help="maintainers: regenerate a shipped steel in place (e.g. --out materials/SUJ3.toml from "
+                          "materials/data/SUJ3_from_100Cr6.toml); its name and description are kept")
 
 
 def name_as_users(path: Path, description: str) -> None:
@@ -47,13 +50,15 @@ def name_as_users(path: Path, description: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    refuse_shipped_file(args.out)
+    if not args.replace_shipped:
+        refuse_shipped_file(args.out, hint="maintainers regenerating it: --replace-shipped")
     data = load_diagram_data(args.data)
     histories = fk.jominy_histories(data, progress=not args.json)
     result = fk.fit_kinetics(data, histories)
     out = fk.write_material(result, args.out, str(args.data))
-    name_as_users(out, f"{out.stem}: kinetics fitted by `quenchsim material fit {args.data}` ({data.name}); the other "
-                       f"data from {data.material}")
+    if out.stem != Path(data.material).stem:   # a new steel: the user's name; a regenerated one keeps its own
+        name_as_users(out, f"{out.stem}: kinetics fitted by `quenchsim material fit {args.data}` ({data.name}); the other "
+                           f"data from {data.material}")
     if args.plots:
         from quenchsim.fitting.plots import plot_cct_overlay, plot_jominy, plot_ttt
         from quenchsim.metallurgy import hv_to_hrc
