@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 import skfem
-from quenchsim import mechanics, metallurgy
+from quenchsim import __version__, mechanics, metallurgy
 from quenchsim.case import Case
 from quenchsim.errors import InputError, QuenchsimError, RunInterrupted, SolverError
 from quenchsim.fem import INTORDER
@@ -38,6 +38,7 @@ from quenchsim.io.checkpoint import read_checkpoint, write_checkpoint
 from quenchsim.materials import load_material, thermal_properties, transforms
 from quenchsim.progress import CoolingProgress, RunProgress, StepState, film_collapse_temperatures
 from quenchsim.results import RunWriter, files
+from quenchsim.results.measured import compare_with_measured
 from quenchsim.results.writer import claim_run_folder
 from quenchsim.results.postprocess import NodalProjection, phase_statistics
 from quenchsim.results.shape import shape_change
@@ -312,7 +313,12 @@ class QuenchRun:
                 end_state = self._end_state()
         except (KeyboardInterrupt, RunInterrupted) as exc:
             status, error = "interrupted", str(exc) or "interrupted (Ctrl-C)"
-            end_state = self._end_state(closing_step=False)
+            try:
+                end_state = self._end_state(closing_step=False)
+            except KeyboardInterrupt:   # Ctrl-C again while the stresses catch up: keep the last stress step's
+                end_state = {"at_room_temperature": False, "time_s": float(self.thermal.time_s),
+                             "note": "interrupted again while the stresses caught up with the last thermal step: "
+                                     "stresses and dimensions are those of the last stress step"}
             log.error("run interrupted at t = %.4g s", self.thermal.time_s)
         except QuenchsimError as exc:
             status, error = "failed", str(exc)
@@ -762,7 +768,8 @@ class QuenchRun:
 
     def summary(self, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wall0: float) -> dict[str, Any]:
         fields = self.nodal_fields()
-        out: dict[str, Any] = {"case": self.case.name, "condition": self.case.condition}
+        out: dict[str, Any] = {"case": self.case.name, "condition": self.case.condition,
+                               "quenchsim_version": __version__, "case_sha256": self.case.digest()}
         out["probes"] = probe_times(time_s, probe_T)
         out["quench"] = self.handling_summary()
         final = self.final_section()
@@ -775,6 +782,9 @@ class QuenchRun:
             out["phases_final"] = phase_statistics(self.thermal.fractions(), self.fe.r_dx)
         if self.mech is not None:
             out.update(self.mechanics_summary(final))
+            measured = compare_with_measured(out.get("dimensions_mm"), dict(self.case.data), self.case.condition)
+            if measured is not None:
+                out["measured"] = measured
         out["energy"] = {"heat_extracted_J": self.counts["heat_out_J"], "latent_released_J": self.counts["latent_J"]}
         out["solver"] = {"wall_time_s": time.perf_counter() - wall0, "stage_time_s": dict(self.timings),
                          "steps": self.counts["steps"], "rejected_steps": self.counts["rejected"],

@@ -216,3 +216,29 @@ def test_ctrl_c_while_post_processing_is_finished_by_resume(tmp_path, monkeypatc
     resumed = qs.run(case, tmp_path / "run", progress=False, resume=True)
     assert_same_summary(reference.summary, resumed.summary)
     assert_same_files(tmp_path / "reference", tmp_path / "run")
+
+
+def test_a_second_ctrl_c_while_the_stresses_catch_up_still_leaves_a_summary(tmp_path, monkeypatch):
+    """Issue 36: a double Ctrl-C left no summary.json. The first stops the step loop; the second lands in the
+    stress catch-up of the interrupted state: the run still records what it computed, as interrupted."""
+    import quenchsim.pipeline as pipeline
+
+    def stop_after_a_second(solver, step):
+        commit(solver, step)
+        if solver.time_s > 1.0:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    def catch_up_interrupted(self):
+        if self.stop.requested:     # the second Ctrl-C, in the catch-up of the interrupted state
+            raise KeyboardInterrupt
+        return catch_up(self)
+
+    commit, catch_up = ThermalSolver.commit, pipeline.QuenchRun._mechanics_catch_up
+    monkeypatch.setattr(ThermalSolver, "commit", stop_after_a_second)
+    monkeypatch.setattr(pipeline.QuenchRun, "_mechanics_catch_up", catch_up_interrupted)
+    with pytest.raises(RunInterrupted, match="--resume"):
+        qs.run(case_from_dict(plastic_ring()), tmp_path / "run", progress=False)
+    stopped = json.loads((tmp_path / "run" / files.SUMMARY_JSON).read_text())
+    assert stopped["status"] == "interrupted" and stopped["stopped_at_s"] > 1.0
+    assert "interrupted again" in stopped["end_state"]["note"]
+    assert (tmp_path / "run" / files.CHECKPOINT_NPZ).exists()

@@ -28,6 +28,8 @@ Tables of a case file and the dataclass each becomes:
 
 from __future__ import annotations
 
+import hashlib
+import json
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -168,6 +170,12 @@ class Case:
     def resolved(self) -> dict[str, Any]:
         """The fully resolved inputs as written to a run's case.toml."""
         return {"name": self.name, "condition": self.condition or "", **self.data}
+
+    def digest(self) -> str:
+        """SHA-256 (first 16 hex digits) of :meth:`resolved`: the same inputs give the same value wherever the case
+        file lies, so a summary.json names exactly what ran (the code's version is beside it)."""
+        text = json.dumps(self.resolved(), sort_keys=True, default=str)
+        return hashlib.sha256(text.encode()).hexdigest()[:16]
 
     def with_overrides(self, overrides: Mapping[str, Any]) -> "Case":
         """A new case with dotted-path ``overrides`` applied to this one's table (a value None removes the

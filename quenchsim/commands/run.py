@@ -131,9 +131,14 @@ def summary_table(s: dict, out: Path) -> str:
         rows.append("note: no mechanics in this run: no dimensions, shape, distortion or residual stresses computed")
     if "dimensions_mm" in s:
         d = s["dimensions_mm"]
-        rows.append(f"{'dimension (mm)':<16}{'before':>10}{'after':>10}{'change':>10}")
+        m = s.get("measured", {}).get("change", {})
+        rows.append(f"{'dimension (mm)':<16}{'before':>10}{'after':>10}{'change':>10}"
+                    + (f"{'measured':>10}{'sim - meas':>12}" if m else ""))
         for k in d["change"]:
-            rows.append(f"{k:<16}{d['before'][k]:>10.3f}{d['after'][k]:>10.3f}{d['change'][k]:>+10.3f}")
+            rows.append(f"{k:<16}{d['before'][k]:>10.3f}{d['after'][k]:>10.3f}{d['change'][k]:>+10.3f}"
+                        + (f"{m[k]['measured']:>+10.3f}{m[k]['simulated_minus_measured']:>+12.3f}" if k in m else ""))
+        if m:
+            rows.append(f"measured: {s['measured']['source']}")
     if "shape_mm" in s:
         rows += shape_rows(s["shape_mm"])
     return "\n".join(rows)

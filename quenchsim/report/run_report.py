@@ -143,7 +143,7 @@ def _summary_tables(run: RunResults) -> list[Item]:
 
 def _dimension_table(run: RunResults, missing: list[str]) -> list[Item]:
     dims = (run.summary or {}).get("dimensions_mm")
-    meas = measured_dimensions(run.case)
+    meas = measured_dimensions(run.case, (run.summary or {}).get("condition"))
     if not dims:
         missing.append("dimension table: summary.json has no dimensions_mm (a run without mechanics)")
         return []
