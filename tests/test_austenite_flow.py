@@ -71,3 +71,26 @@ def test_shipped_austenite_row_is_the_data_files_table(steel):
     assert row["range_factor"] == pytest.approx(table.range_factor)
     assert row["T_C"][0] <= 20.0 and row["T_C"][-1] >= 900.0
     assert "Greenwood" not in row["source"].split("Replaces")[0]
+
+
+@pytest.mark.parametrize("steel", ["SUJ2", "SUJ3"])
+def test_the_metastable_factor_scales_only_the_assumed_part_of_the_austenite_row(steel):
+    """[plastic] metastable_austenite_yield_factor: nominal 1 in the shipped steels; a factor f multiplies the
+    yield points below 750 C (the assumed, metastable part) and leaves the hot-test points, in the parsed model."""
+    import copy
+
+    from quenchsim.calibration.inputs import free_input
+    from quenchsim.mechanics.model import METASTABLE_KEY, load_mechanics
+
+    material = load_material(steel)
+    entry = material["mechanics"]["plastic"][METASTABLE_KEY]
+    assert entry["value"] == 1.0 and entry["below_T_C"] == 750.0
+    assert free_input(f"material.{steel}.mechanics.plastic.{METASTABLE_KEY}").factor_bounds == pytest.approx((1 / 3, 3.0))
+    row = material["mechanics"]["plastic"]["yield_Pa"]["per_phase"]["austenite"]
+    T = np.array(row["T_C"])
+    nominal = load_mechanics(material).yield_Pa.for_phase("austenite")(T)
+    changed = copy.deepcopy(material)
+    changed["mechanics"]["plastic"][METASTABLE_KEY]["value"] = 2.5
+    scaled = load_mechanics(changed).yield_Pa.for_phase("austenite")(T)
+    np.testing.assert_allclose(scaled, np.where(T < 750.0, 2.5, 1.0) * nominal, rtol=1e-12)
+    np.testing.assert_allclose(nominal, row["value"], rtol=1e-12)

@@ -194,6 +194,38 @@ def _property(table: Mapping[str, Any], key: str, prefix: str) -> Property:
     return parse_property(table[key], f"{prefix}.{key}")
 
 
+METASTABLE_KEY = "metastable_austenite_yield_factor"
+"""Optional [plastic] entry ``{ value, below_T_C, range_factor, source }``: a factor on the austenite yield table's
+points below ``below_T_C`` -- the metastable austenite of a quench, where no hot test applies and the row is an
+assumption -- so that the calibration can move that part alone (its own, wider prior) and leave the sourced hot part."""
+
+
+def metastable_austenite_scaled(plastic: Mapping[str, Any], prefix: str) -> Mapping[str, Any]:
+    """The [plastic] table with the austenite yield points below ``below_T_C`` times :data:`METASTABLE_KEY`'s
+    value (unchanged without that entry). The table interpolates between the last scaled and the first kept point.
+
+    >>> row = {"T_C": [20.0, 700.0, 750.0], "value": [300e6, 88e6, 81e6]}
+    >>> p = {"yield_Pa": {"per_phase": {"austenite": row}},
+    ...      METASTABLE_KEY: {"value": 2.0, "below_T_C": 750.0, "range_factor": 3.0}}
+    >>> metastable_austenite_scaled(p, "plastic")["yield_Pa"]["per_phase"]["austenite"]["value"]
+    [600000000.0, 176000000.0, 81000000.0]
+    """
+    if METASTABLE_KEY not in plastic:
+        return plastic
+    where = f"{prefix}.{METASTABLE_KEY}"
+    factor = _number(plastic, METASTABLE_KEY, prefix, 1e-3, 1e3)
+    entry = plastic[METASTABLE_KEY]
+    below = _number(entry, "below_T_C", where, -273.15, 2000.0) if isinstance(entry, Mapping) else None
+    if below is None:
+        raise InputError(f"{where}.below_T_C", None, "is required: the temperature below which the factor applies")
+    row = plastic.get("yield_Pa", {}).get("per_phase", {}).get("austenite") if isinstance(plastic.get("yield_Pa"), Mapping) else None
+    if not (isinstance(row, Mapping) and isinstance(row.get("T_C"), list) and isinstance(row.get("value"), list)):
+        raise InputError(where, factor, "needs yield_Pa.per_phase.austenite as a T_C / value table")
+    scaled = dict(row, value=[v * factor if T < below else v for T, v in zip(row["T_C"], row["value"])])
+    per_phase = dict(plastic["yield_Pa"]["per_phase"], austenite=scaled)
+    return dict(plastic, yield_Pa=dict(plastic["yield_Pa"], per_phase=per_phase))
+
+
 def _table(data: Mapping[str, Any], key: str, prefix: str) -> Mapping[str, Any]:
     sub = data.get(key)
     if not isinstance(sub, Mapping):
@@ -349,7 +381,7 @@ def load_mechanics(material: Mapping[str, Any], options: Mapping[str, Any] | Non
     if plasticity:
         if not isinstance(mech.get("plastic"), Mapping):
             raise InputError("mechanics.plasticity", True, f"{name} has no [plastic] table; set plasticity = false")
-        plastic = _table(mech, "plastic", prefix)
+        plastic = metastable_austenite_scaled(_table(mech, "plastic", prefix), f"{prefix}.plastic")
         model_args["yield_Pa"] = _property(plastic, "yield_Pa", f"{prefix}.plastic")
         model_args["hardening_Pa"] = _property(plastic, "hardening_Pa", f"{prefix}.plastic")
         model_args["hardening_memory"] = _number(plastic, "hardening_memory", f"{prefix}.plastic", 0.0, 1.0)

@@ -186,9 +186,11 @@ def what_holds_it_back(cond: dict[str, Any]) -> list[str]:
             f"{ok(ch('3', 'id') < ch('1', 'id'))} | 3 - 1: {split('3', 'id', '1')} |", "",
             "The free strain of the final phases (martensite and retained austenite against the annealed ring) makes the "
             "ring grow in every condition; what can make it shrink is plastic flow, the hot core yielding against the "
-            "cooled shell (thermal plasticity) and transformation plasticity. The calibration (calibration/ring_a) asks "
-            "whether the hot-austenite yield, the TRIP constants and the bore flow can, inside their priors, reach the "
-            "measured change; its page says where they land.", ""]
+            "cooled shell (thermal plasticity) and transformation plasticity. Which of the two wins is decided by the yield "
+            "of the metastable austenite below 750 C, an assumption (docs/experiments/process_physics.md: that part x0.5 / 1 / "
+            "2 / 3 gives an ID change of +0.54 / +0.02 / -0.60 / -0.94 mm in condition 1). The calibration (calibration/ring_a) "
+            "asks whether the austenite yield, its metastable part and the TRIP constants can, inside their priors, reach "
+            "the measured change; its page says where they land.", ""]
 
 
 def page(metrics: dict[str, Any]) -> str:
