@@ -204,6 +204,13 @@ ONE declared calibration: the PEARLITE time scale x {m['calibration_factor_pearl
   passes the fast Kaymak bainite C-curve (start 8 s at 380-440 C) on the way down. Two further pearlite Avrami
   exponents were tried inside the fit's uncertainty (n = 5, 6 with tau re-fitted; bath before the Berenson fix): at
   the depth's factor P1 had 0.30 / 0.37 pearlite and 0.20 / 0.21 bainite -- no better. Not forced.
+* **What a pearlitic core would ask of the cooling** (docs/experiments/process_physics.md, thermal + metallurgy
+  runs): the kinetics are sharp enough (linear cooling: HRC58 at 8 C/s, 0.70 pearlite at 6 C/s), the wall is not --
+  in its regular regime every point cools at nearly the same rate at a given temperature. Only about 6 kW/m2K on
+  every surface through the pearlite range, with the pearlite x0.54, gives the report's picture (HRC58 5.2 mm, 0.90
+  pearlite at P1); one 3 kW/m2K oil table leaves 0.49 pearlite, and Furlan's measured-fit specific heat of the
+  SUJ3-like 100CrMnSi6-4 (550-600 J/kg K in hot austenite, against the printed 419 at every temperature) moves the
+  factor above 1 (1.17) but turns the core bainitic (0.43-0.86).
 
 ## Through the wall, condition 1 (mid-width, from the bore)
 
