@@ -87,6 +87,16 @@ def _band(b: dict[str, float], fmt: str = "+.3f") -> str:
     return f"{b['median']:{fmt}} ({b['p5']:{fmt}} to {b['p95']:{fmt}})"
 
 
+def _outside(band: dict[str, Any], check: dict[str, Any]) -> str:
+    """Where each measured change lies against the full chain's 5-95 % band over the posterior, in words."""
+    parts = []
+    for k in ("id", "od"):
+        lo, hi, m = band[k]["p5"], band[k]["p95"], check[k]["measured"]
+        where = (f"{lo - m:.2f} mm below" if m < lo else f"{m - hi:.2f} mm above" if m > hi else "inside")
+        parts.append(f"{k.upper()} {m:+.2f} mm, {where} its band ({lo:+.3f} to {hi:+.3f})")
+    return "; ".join(parts)
+
+
 def page(metrics: dict[str, Any]) -> str:
     cal, pred, trend = metrics["calibration"], metrics["predictions"], metrics["trend_vs_condition_1"]
     md = [f"Calibration file: `validation/calibration/ring_a/ring_a_c1.cal.toml` (mesh x2). "
@@ -95,7 +105,7 @@ def page(metrics: dict[str, Any]) -> str:
           f"{metrics['calibration_wall_time_min']:.1f} min ({metrics['calibration_runs_ran_now']} runs run in it, the rest "
           f"from the cache), whole study {metrics['study_wall_time_min']:.1f} min, {WORKERS} Dask workers on the "
           "shared 2-core machine.", "", "## Posterior", "", *posterior_rows(cal), "",
-          "Factors multiply the values of the inputs' data files (materials/SUJ3.mechanics.toml, materials/baths/jet_bath.toml); the prior is log-uniform between the factor "
+          "Factors multiply the values of the inputs' data files (materials/SUJ3.mechanics.toml); the prior is log-uniform between the factor "
           "bounds its range gives (quenchsim/calibration/inputs.py). The calibrated SUJ3 (posterior median) is written "
           "as a new file in the calibration folder; the priors are untouched. Corner plot: "
           "![corner](calibration_ring_a_corner.png)", "",
@@ -136,11 +146,11 @@ def page(metrics: dict[str, Any]) -> str:
         md.append(f"| {c[1]} | {_band(b['id'])} | {_band(b['od'])} | {_band(b['width'])} |")
     md += ["", "The reference report prints no dimensions after quench for ring B (docs/reference/quench_cases.md, "
            "validation/quench/ring_b/targets.toml): there is no measurement to set against these bands.", "",
-           "How to read the bands: they carry the posterior of the four inputs and nothing else. Where the posterior "
-           "sits at the edges of its priors (above), the band is narrow because the priors end there, not because the "
-           "prediction is known that well: ring A condition 1's measured ID lies "
-           f"{pred['A1']['band']['id']['p5'] - check['id']['measured']:.2f} mm below its own band. An "
-           "honest error bar for ring B adds that model-form discrepancy, which one measured ring cannot separate "
+           "How to read the bands: they carry the posterior of the four inputs and nothing else"
+           + (" -- where the posterior sits at the edges of its priors (above) the band is narrow because the priors end "
+              "there, not because the prediction is known that well" if edge else "")
+           + f". Ring A condition 1's measured change lies outside its own band: {_outside(pred['A1']['band'], check)}. "
+           "An honest error bar for ring B adds that model-form discrepancy, which one measured ring cannot separate "
            "from the inputs.", "",
            "## Surrogate and screening", ""]
     for k, h in cal["surrogate"]["holdout"].items():
