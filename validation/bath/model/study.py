@@ -341,8 +341,13 @@ def run(workdir: Path) -> dict[str, Any]:
         md.append(f"| {e['Re']:.0f} | {e['H_D']:g} | {e['stagnation_Nu']:.0f} | {e['goldstein_stagnation_Nu']:.0f} | "
                   f"{e['stagnation_Nu'] / e['goldstein_stagnation_Nu']:.3f} | {e['r5_Nu']:.0f} | "
                   f"{e['goldstein_r5_Nu']:.0f} | {e['r5_Nu'] / e['goldstein_r5_Nu']:.3f} |")
-    md += ["", "Not found for a further check (searched, see materials/SOURCES.md \"The jet bath\"): tabulated single-jet "
-           "data in oil, agitated-probe cooling curves of a mineral oil at stated speeds, oil-jet quench boiling data.", ""]
+    md += ["", "This is the bath's only check against published measurements, and it is partly circular (inside r/D 2.5 "
+           "the model uses Goldstein's own radial shape): issue 33's \"at least two checks\" is not met. Searched for a "
+           "second and not found readable here (materials/SOURCES.md \"The jet bath\"; the log and the candidates in "
+           "docs/experiments/bath_second_check_search.md): tabulated single-jet Nu(r/D) (Baughn & Shimizu 1989; the "
+           "ERCOFTAC case-25 files are public but no copy is stored here), submerged liquid-jet data at several Prandtl "
+           "numbers (Li & Garimella 2001 beyond its abstract), agitated-probe cooling curves of a mineral oil at stated "
+           "speeds, oil-jet quench boiling data.", ""]
 
     # response to each jet
     resp = jet_response_study()
