@@ -168,3 +168,13 @@ def test_a_run_finds_the_fitted_oil_and_steel_by_name(fitted_project):
 def test_the_user_folder_never_modifies_the_shipped_materials(fitted_project):
     assert fitted_project["shipped_after"] == fitted_project["shipped_before"]
     assert not (SHIPPED / "MY_STEEL.toml").exists() and not (SHIPPED / "quenchants" / "my_oil.toml").exists()
+
+
+def test_a_users_steel_named_like_its_shipped_base_is_described_as_the_users(project):
+    """`material fit` of data based on SUJ2 into ./materials/SUJ2.toml writes the user's SUJ2 (found first by name in
+    the user's runs), described as fitted, not with the shipped SUJ2's description."""
+    shutil.copyfile(TTT_DATA, project / "SUJ2.toml")
+    assert main(["material", "fit", "SUJ2.toml", "--json"]) == 0
+    mine = tomllib.loads((project / "materials" / "SUJ2.toml").read_text())
+    assert mine["name"] == "SUJ2" and mine["description"].startswith("SUJ2: kinetics fitted by `quenchsim material fit")
+    assert load_material("SUJ2")["description"] == mine["description"]

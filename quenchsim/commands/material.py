@@ -9,7 +9,8 @@ The written steel is the user's: its ``name`` is the output file's stem and its 
 to (the base material's are not kept). It goes to ``--out``, by default ``./materials/DATA.toml`` (the current
 directory's data folder, where ``quenchsim run`` finds it by name: :mod:`quenchsim.materials`); an ``--out`` in the
 shipped data folder is refused before any work. The data are checked for plausibility before the fit
-(:func:`quenchsim.fitting.diagram_data.check_plausible`). The fit
+(:func:`quenchsim.fitting.diagram_data.load_diagram_data`). A re-fit written over its own base material file keeps
+that file's name and description (a maintainer regenerating a shipped steel, ``--replace-shipped``). The fit
 writes no mechanics data: a run of the steel needs ``NAME.mechanics.toml`` beside it, or
 ``--set mechanics.enabled=false`` (docs/guide/bring_a_steel.md).
 """
@@ -23,14 +24,14 @@ from pathlib import Path
 from quenchsim.commands.data_option import add_data_option
 from quenchsim.fitting import kinetics as fk
 from quenchsim.fitting.diagram_data import load_diagram_data
-from quenchsim.materials import USER_DATA_FOLDER
+from quenchsim.materials import USER_DATA_FOLDER, find_data_file
 from quenchsim.shipped import refuse_shipped_file
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
     sub = parser.add_subparsers(dest="action", required=True)
     fit = sub.add_parser("fit", help="fit a steel's transformation kinetics to CCT / TTT / Jominy data")
-    fit.add_argument("data_file", metavar="data", type=Path, help="data file (see quenchsim/fitting/diagram_data.py for the format)")
+    fit.add_argument("data_file", metavar="DATA.toml", type=Path, help="data file (see quenchsim/fitting/diagram_data.py for the format)")
     fit.add_argument("--out", type=Path, help="material file to write (default: materials/DATA.toml in the current "
                                               "folder, where a run finds it by name)")
     add_data_option(fit)
@@ -46,9 +47,10 @@ def run(args: argparse.Namespace) -> int:
     if not args.replace_shipped:
         refuse_shipped_file(out, hint="maintainers regenerating it: --replace-shipped")
     data = load_diagram_data(args.data_file)
+    base = find_data_file(data.material, field=f"{data.path.name}: material")
     histories = fk.jominy_histories(data, progress=not args.json)
     result = fk.fit_kinetics(data, histories)
-    own = out.stem != Path(data.material).stem   # a new steel: the user's name; a regenerated one keeps its own
+    own = out.resolve() != base.resolve()   # a new steel: the user's name; one re-fitted in place keeps its own
     out = fk.write_material(result, out, str(args.data_file), name=out.stem if own else None,
                             description=f"{out.stem}: kinetics fitted by `quenchsim material fit {args.data_file}` "
                                         f"({data.name}); the other data from {data.material}")
