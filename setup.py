@@ -1,6 +1,6 @@
 """Build hook: a wheel (or sdist install) carries the data folders materials/ and cases/ inside the package,
 as quenchsim/_data/, so an installed quenchsim finds its steels, quenchants and reference cases without the
-repository (quenchsim.materials.materials_dir). An editable install reads them from the checkout."""
+repository (quenchsim.shipped.shipped_dir). An editable install reads them from the checkout."""
 
 import shutil
 from pathlib import Path

@@ -14,6 +14,7 @@ import json
 import os
 import sys
 
+from quenchsim.commands.data_option import DATA_COMMANDS, add_data_option
 from quenchsim.errors import QuenchsimError, RunInterrupted
 
 COMMANDS: dict[str, tuple[str, str]] = {
@@ -53,6 +54,8 @@ def build_parser() -> argparse.ArgumentParser:
         # import only the command being run (keeps `quenchsim --help` and other verbs fast)
         if name in argv[:1]:
             importlib.import_module(module).configure(p)
+            if name in DATA_COMMANDS:
+                add_data_option(p)
         p.set_defaults(_module=module)
 
     from quenchsim.bearings.commands import VERBS
@@ -84,6 +87,10 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args()
     try:
+        if getattr(args, "data_folders", None):
+            from quenchsim.materials import use_data_folders
+
+            use_data_folders(args.data_folders)
         if getattr(args, "_bearing_module", None):
             from quenchsim.bearings.commands.ranges import check_ranges
 

@@ -273,6 +273,14 @@ class QuenchRun:
     def probe_temperatures(self) -> np.ndarray:
         return self.probe_matrix @ self.thermal.T if self.probe_matrix is not None else np.zeros(0)
 
+    def _record_probes(self, probes: Any) -> None:
+        """A row of probes.csv (and of the run's probe arrays) at the current time and temperatures. The closing
+        step to room temperature (:meth:`_equilibrate_at_room_temperature`) takes no time: its row repeats the last
+        step's time_s with the room-temperature state the last VTK frame shows."""
+        self.times.append(self.thermal.time_s)
+        self.probe_rows.append(self.probe_temperatures())
+        probes.write(self.thermal.time_s, self.probe_rows[-1])
+
     def nodal_fields(self) -> dict[str, np.ndarray]:
         nv = self.section.mesh.p.shape[1]
         state = self.thermal.phase_state
@@ -311,6 +319,8 @@ class QuenchRun:
                 self._stages(vtk, probes)
                 self.stop.check()
                 end_state = self._end_state()
+                if end_state["at_room_temperature"]:   # probes.csv ends, like the last frame, on the closing step
+                    self._record_probes(probes)
         except (KeyboardInterrupt, RunInterrupted) as exc:
             status, error = "interrupted", str(exc) or "interrupted (Ctrl-C)"
             try:
@@ -426,9 +436,7 @@ class QuenchRun:
                 counts["steps"] += 1
                 counts["heat_out_J"] += step.heat_out_J
                 counts["latent_J"] += step.latent_J
-                self.times.append(self.thermal.time_s)
-                self.probe_rows.append(self.probe_temperatures())
-                probes.write(self.thermal.time_s, self.probe_rows[-1])
+                self._record_probes(probes)
                 # a frame per 1/frames of the whole cooling, measured by the mean nodal change (the
                 # max-norm counted the fast surface swings: ~260 frames for 40 requested)
                 if float(np.mean(np.abs(self.thermal.T - self._last_frame_T))) >= frame_dT:

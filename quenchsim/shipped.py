@@ -3,7 +3,8 @@
 A checkout (source or editable install) has ``cases/`` and ``materials/`` beside the package; a wheel carries copies
 of both inside it, as ``quenchsim/_data/cases`` and ``quenchsim/_data/materials`` (setup.py). A user reaches a
 shipped case by its name (``quenchsim run crb_outer_ring --condition 1``, ``quenchsim cases``) and never writes
-into the shipped materials (the fitters refuse such an ``--out``, :func:`refuse_shipped_file`).
+into the shipped materials (the fitters refuse such an ``--out``, :func:`refuse_shipped_file`). Where data names are
+resolved (the user's folders first, then this shipped data): :mod:`quenchsim.materials`.
 """
 
 from __future__ import annotations
@@ -18,9 +19,9 @@ PACKAGE = Path(__file__).resolve().parent
 
 
 def shipped_dir(folder: str) -> Path:
-    """The shipped data folder ``folder`` ("cases" or "materials"): the checkout's, else the wheel's copy. Unlike
-    :func:`quenchsim.materials.materials_dir` it ignores ``$QUENCHSIM_MATERIALS``: that names a folder of the
-    user's, not what quenchsim ships."""
+    """The shipped data folder ``folder`` ("cases" or "materials"): the checkout's, else the wheel's copy. The one
+    place that says where shipped data lie (:func:`quenchsim.materials.materials_dir` is this for "materials"; the
+    user's folders searched before it are :func:`quenchsim.materials.data_folders`)."""
     checkout = PACKAGE.parent / folder
     return checkout if checkout.is_dir() else PACKAGE / "_data" / folder
 
@@ -82,12 +83,15 @@ def resolve_case(value: str | Path) -> Path:
 
 
 def refuse_shipped_file(out: str | Path, field: str = "--out", hint: str = "") -> None:
-    """Raise :class:`InputError` when ``out`` is an existing file of the shipped ``materials/`` folder: the fitters
-    write the user's data beside it, never over it (an overwritten steel or oil silently changes every case and
-    validation study that reads it)."""
+    """Raise :class:`InputError` when ``out`` lies in the shipped ``materials/`` folder: the fitters write the user's
+    data into the user's folder (``./materials`` by default), never into the shipped one (an overwritten steel or oil
+    silently changes every case and validation study that reads it; a new file there ends up in a built wheel and
+    marks the validation studies stale)."""
     shipped = shipped_dir("materials").resolve()
     path = Path(out).expanduser().resolve()
-    if path.is_file() and path.is_relative_to(shipped):
-        raise InputError(field, str(out), f"is a file quenchsim ships (materials/{path.relative_to(shipped).as_posix()}) "
-                                          "and is never overwritten: write your own under a new name or folder"
+    if path.is_relative_to(shipped):
+        what = "a file quenchsim ships" if path.is_file() else "in the folder of the data quenchsim ships"
+        raise InputError(field, str(out), f"is {what} (materials/{path.relative_to(shipped).as_posix()}), whose files "
+                                          "are never overwritten nor added to: write into your own folder (run from your project folder, "
+                                          "whose ./materials is the default, or give another --out)"
                                           + (f" ({hint})" if hint else ""))

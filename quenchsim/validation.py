@@ -519,7 +519,16 @@ def page_markdown(study: Study, metrics: dict[str, Any], verdicts: list[Verdict]
 
 
 def run_study(study: Study, reports_dir: Path, runs_dir: Path = RUNS, force: bool = False) -> StudyResult:
-    """Run ``study`` (or reuse its cached metrics), write its page, metrics record and PNGs; never raises."""
+    """Run ``study`` (or reuse its cached metrics), write its page, metrics record and PNGs; never raises. The study
+    sees the shipped data only (:func:`quenchsim.materials.shipped_data_only`): a user's ``./materials`` or
+    ``QUENCHSIM_DATA`` folder never changes which steel or oil it loads, nor its fingerprint."""
+    from quenchsim.materials import shipped_data_only
+
+    with shipped_data_only():
+        return _run_study(study, reports_dir, runs_dir, force)
+
+
+def _run_study(study: Study, reports_dir: Path, runs_dir: Path, force: bool) -> StudyResult:
     reports_dir, runs_dir = Path(reports_dir), Path(runs_dir)
     reports_dir.mkdir(parents=True, exist_ok=True)
     try:

@@ -1,8 +1,12 @@
 """A built wheel carries the data it needs: installed outside the checkout it finds its steels and
-quenchants (quenchsim/_data) and runs the reference case."""
+quenchants (quenchsim/_data) and runs the reference case; and the README's bring-your-own-oil and -steel commands
+work with it, as written, from a project folder (the wheel is built once for both, ~60-90 s in all)."""
 
 import json
 import os
+import re
+import shlex
+import shutil
 import site
 import subprocess
 import sys
@@ -46,9 +50,12 @@ def link_site_folders(venv: Path, folders: list[str]) -> Path:
     return pth
 
 
-def test_built_wheel_runs_the_reference_case_outside_the_checkout(tmp_path):
-    """The wheel is built from this checkout and installed (without dependencies) into a new venv that sees
-    the running interpreter's site packages for numpy, scikit-fem, ... but no quenchsim other than the wheel's."""
+@pytest.fixture(scope="module")
+def wheel_venv(tmp_path_factory) -> Path:
+    """The wheel built from this checkout and installed (without dependencies) into a new venv that sees the running
+    interpreter's site packages for numpy, scikit-fem, ... but no quenchsim other than the wheel's; built once for
+    this file's tests."""
+    tmp_path = tmp_path_factory.mktemp("wheel")
     wheels = tmp_path / "wheels"
     built = subprocess.run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps", "-w", str(wheels), str(ROOT)],
                            cwd=tmp_path, capture_output=True, text=True, timeout=600)
@@ -59,8 +66,13 @@ def test_built_wheel_runs_the_reference_case_outside_the_checkout(tmp_path):
     venv = tmp_path / "venv"
     _run([sys.executable, "-m", "venv", str(venv)], tmp_path, 300)
     link_site_folders(venv, running_site_folders())
-    python = venv / "bin" / "python"
-    _run([str(python), "-m", "pip", "install", "-q", "--no-deps", "--force-reinstall", str(wheel)], tmp_path, 600)
+    _run([str(venv / "bin" / "python"), "-m", "pip", "install", "-q", "--no-deps", "--force-reinstall", str(wheel)],
+         tmp_path, 600)
+    return venv
+
+
+def test_built_wheel_runs_the_reference_case_outside_the_checkout(wheel_venv, tmp_path):
+    venv, python = wheel_venv, wheel_venv / "bin" / "python"
     where = _run([str(python), "-c", "import quenchsim, quenchsim.materials as m; print(quenchsim.__file__); "
                   "print(m.materials_dir())"], tmp_path, 120).stdout.split()
     assert str(venv) in where[0] and where[1].endswith("_data/materials") and str(venv) in where[1]
@@ -70,3 +82,40 @@ def test_built_wheel_runs_the_reference_case_outside_the_checkout(tmp_path):
     summary = json.loads((out / "summary.json").read_text())
     assert summary["status"] == "ok" and summary["end_state"]["at_room_temperature"]
     assert summary["dimensions_mm"]["before"]["id"] == pytest.approx(218.3, abs=1e-6)
+
+
+README_SECTION = "## Your own oil and steel"
+README_EXAMPLES = {"my_oil.csv": ROOT / "docs" / "guide" / "first_hour_probe_curve.csv",
+                   "data/MY_STEEL.toml": ROOT / "docs" / "guide" / "first_hour_ttt.toml"}
+"""The user's files the README's bring-your-own commands read, and the examples it names for them."""
+
+
+def readme_bring_your_own_commands() -> list[str]:
+    """The commands of the README's "Your own oil and steel" section, as written."""
+    text = (ROOT / "README.md").read_text()
+    section = text[text.index(README_SECTION):]
+    section = section[:section.index("\n## ", len(README_SECTION))]
+    fences = re.findall(r"^```bash\n(.*?)^```", section, flags=re.MULTILINE | re.DOTALL)
+    assert len(fences) == 1, "the section has one ```bash block"
+    return [ln.strip() for ln in fences[0].splitlines() if ln.strip()]
+
+
+def test_readmes_bring_your_own_oil_and_steel_run_from_a_wheel_in_a_project_folder(wheel_venv, tmp_path):
+    """The README's commands, exactly, run by the wheel's `quenchsim` in a project folder outside the checkout: the
+    fitted oil and steel land in ./materials and the run finds both by name (issue 36)."""
+    commands = readme_bring_your_own_commands()
+    assert [c.split()[:3] for c in commands] == [["quenchsim", "quenchant", "fit"], ["quenchsim", "material", "fit"],
+                                                 ["quenchsim", "run", "crb_outer_ring"]]
+    for name, example in README_EXAMPLES.items():
+        assert str(example.relative_to(ROOT)) in (ROOT / "README.md").read_text()
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(example, tmp_path / name)
+    for command in commands:
+        argv = shlex.split(command)
+        _run([str(wheel_venv / "bin" / argv[0]), *argv[1:]], tmp_path, 600)
+    assert (tmp_path / "materials" / "quenchants" / "my_oil.toml").is_file()
+    assert (tmp_path / "materials" / "MY_STEEL.toml").is_file()
+    summary = json.loads((tmp_path / "runs" / "mine" / "summary.json").read_text())
+    assert summary["status"] == "ok"
+    resolved = (tmp_path / "runs" / "mine" / "case.toml").read_text()
+    assert 'material = "MY_STEEL"' in resolved and 'quenchant = "my_oil"' in resolved

@@ -13,9 +13,9 @@ import pytest
 import quenchsim.shipped as shipped
 from quenchsim.case import load_case
 from quenchsim.cli import main
-from quenchsim.commands.material import name_as_users
 from quenchsim.commands.run import require_mechanics_data, summary_table
 from quenchsim.errors import InputError
+from quenchsim.fitting.kinetics import _identity
 
 ROOT = Path(__file__).resolve().parents[1]
 SHIPPED_CASES = sorted(p.stem for p in (ROOT / "cases").glob("*.toml"))
@@ -105,8 +105,8 @@ def test_quenchant_fit_refuses_a_shipped_oil_before_reading_the_curve(tmp_path, 
 
 def test_a_fitted_steel_carries_the_users_name_not_the_base_steels(tmp_path):
     out = tmp_path / "MY_STEEL.toml"
-    shutil.copyfile(ROOT / "materials" / "SUJ2.toml", out)
-    name_as_users(out, "MY_STEEL: kinetics fitted to my data")
+    out.write_text(_identity((ROOT / "materials" / "SUJ2.toml").read_text(), "MY_STEEL",
+                             "MY_STEEL: kinetics fitted to my data"))
     mine, base = tomllib.loads(out.read_text()), tomllib.loads((ROOT / "materials" / "SUJ2.toml").read_text())
     assert mine["name"] == "MY_STEEL" and mine["description"] == "MY_STEEL: kinetics fitted to my data"
     assert {k: v for k, v in mine.items() if k not in ("name", "description")} == \

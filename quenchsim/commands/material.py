@@ -1,4 +1,4 @@
-"""`quenchsim material fit DATA.toml --out materials/NAME.toml [--plots DIR] [--json]`: steel kinetics from CCT/TTT/Jominy data.
+"""`quenchsim material fit DATA.toml [--out materials/NAME.toml] [--plots DIR] [--json]`: steel kinetics from CCT/TTT/Jominy data.
 
 Fits the free ``c_curve`` parameters named in the data file's [fit] tables by integrating the simulation's own
 additivity along every data point (:mod:`quenchsim.fitting.kinetics`), prints the parameters and the residual of
@@ -6,7 +6,11 @@ every point, and writes the data file's base material with the fitted reactions 
 residuals, sources). A parameter the data cannot constrain stops the fit with its name (exit 2).
 
 The written steel is the user's: its ``name`` is the output file's stem and its ``description`` says what it was fitted
-to (the base material's are not kept); an ``--out`` that is a file quenchsim ships is refused before any work. The fit
+to (the base material's are not kept). It goes to ``--out``, by default ``./materials/DATA.toml`` (the current
+directory's data folder, where ``quenchsim run`` finds it by name: :mod:`quenchsim.materials`); an ``--out`` in the
+shipped data folder is refused before any work. The data are checked for plausibility before the fit
+(:func:`quenchsim.fitting.diagram_data.load_diagram_data`). A re-fit written over its own base material file keeps
+that file's name and description (a maintainer regenerating a shipped steel, ``--replace-shipped``). The fit
 writes no mechanics data: a run of the steel needs ``NAME.mechanics.toml`` beside it, or
 ``--set mechanics.enabled=false`` (docs/guide/bring_a_steel.md).
 """
@@ -15,20 +19,22 @@ from __future__ import annotations
 
 import argparse
 import json
-import re
-import tomllib
 from pathlib import Path
 
+from quenchsim.commands.data_option import add_data_option
 from quenchsim.fitting import kinetics as fk
 from quenchsim.fitting.diagram_data import load_diagram_data
+from quenchsim.materials import USER_DATA_FOLDER, find_data_file
 from quenchsim.shipped import refuse_shipped_file
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
     sub = parser.add_subparsers(dest="action", required=True)
     fit = sub.add_parser("fit", help="fit a steel's transformation kinetics to CCT / TTT / Jominy data")
-    fit.add_argument("data", type=Path, help="data file (see quenchsim/fitting/diagram_data.py for the format)")
-    fit.add_argument("--out", type=Path, required=True, help="material file to write (e.g. materials/NAME.toml)")
+    fit.add_argument("data_file", metavar="DATA.toml", type=Path, help="data file (see quenchsim/fitting/diagram_data.py for the format)")
+    fit.add_argument("--out", type=Path, help="material file to write (default: materials/DATA.toml in the current "
+                                              "folder, where a run finds it by name)")
+    add_data_option(fit)
     fit.add_argument("--plots", type=Path, help="write CCT / TTT (/ Jominy) overlay PNGs into this folder")
     fit.add_argument("--json", action="store_true", help="print one JSON object instead of the tables")
     fit.add_argument("--replace-shipped", action="store_true",
@@ -36,29 +42,18 @@ def configure(parser: argparse.ArgumentParser) -> None:
                           "materials/data/SUJ3_from_100Cr6.toml); its name and description are kept")
 
 
-def name_as_users(path: Path, description: str) -> None:
-    """Set the top-level ``name`` (the file's stem) and ``description`` of the material file ``path``, which
-    :func:`quenchsim.fitting.kinetics.write_material` copies from the base material (a fitted steel went on
-    calling itself "SUJ2")."""
-    text = path.read_text()
-    header = re.search(r"^\[", text, flags=re.MULTILINE)
-    head, tables = (text[:header.start()], text[header.start():]) if header else (text, "")
-    head = re.sub(r"^(name|description)\s*=.*\n?", "", head, flags=re.MULTILINE)
-    own = f"name = {json.dumps(path.stem)}\ndescription = {json.dumps(description)}\n"
-    path.write_text(head.rstrip("\n") + ("\n" if head.strip() else "") + own + "\n" + tables)
-    tomllib.loads(path.read_text())   # still valid TOML
-
-
 def run(args: argparse.Namespace) -> int:
+    out = args.out or Path(USER_DATA_FOLDER) / f"{args.data_file.stem}.toml"
     if not args.replace_shipped:
-        refuse_shipped_file(args.out, hint="maintainers regenerating it: --replace-shipped")
-    data = load_diagram_data(args.data)
+        refuse_shipped_file(out, hint="maintainers regenerating it: --replace-shipped")
+    data = load_diagram_data(args.data_file)
+    base = find_data_file(data.material, field=f"{data.path.name}: material")
     histories = fk.jominy_histories(data, progress=not args.json)
     result = fk.fit_kinetics(data, histories)
-    out = fk.write_material(result, args.out, str(args.data))
-    if out.stem != Path(data.material).stem:   # a new steel: the user's name; a regenerated one keeps its own
-        name_as_users(out, f"{out.stem}: kinetics fitted by `quenchsim material fit {args.data}` ({data.name}); the other "
-                           f"data from {data.material}")
+    own = out.resolve() != base.resolve()   # a new steel: the user's name; one re-fitted in place keeps its own
+    out = fk.write_material(result, out, str(args.data_file), name=out.stem if own else None,
+                            description=f"{out.stem}: kinetics fitted by `quenchsim material fit {args.data_file}` "
+                                        f"({data.name}); the other data from {data.material}")
     if args.plots:
         from quenchsim.fitting.plots import plot_cct_overlay, plot_jominy, plot_ttt
         from quenchsim.metallurgy import hv_to_hrc

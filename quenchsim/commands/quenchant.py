@@ -1,6 +1,6 @@
 """`quenchsim quenchant fit | from-datasheet | show`: a quenchant's still-bath h(T_surface) from its ISO 9950 curve.
 
-    quenchsim quenchant fit CURVE.csv --out materials/quenchants/NAME.toml [--source "..."] [--bath-temperature-C 40]
+    quenchsim quenchant fit CURVE.csv [--out materials/quenchants/NAME.toml] [--source "..."] [--bath-temperature-C 40]
                                       [--agitation-m-s 0] [--tag "..."] [--png fit.png] [--fast]
     quenchsim quenchant from-datasheet --max-rate 93 --T-max-rate 602 --rate-300 5.4 [--t600 6 --t400 10.4
                                       --t200 40] --bath-temperature-C 60 --out NAME.toml --source "..."
@@ -10,9 +10,10 @@ CURVE.csv has a header ``time_s,temperature_C`` (centre thermocouple of the ISO 
 ``temperature_C,rate_C_s`` (its cooling-rate curve). The fit is an inverse heat conduction on quenchsim's own
 thermal solver (quenchsim.fitting.quenchant); the data-sheet shortcut is an approximation and says so in the file.
 Before the fit, the curve is checked against the probe's physical bounds (quenchsim.fitting.probe_bounds: time to
-300 C, the conduction limit of its cooling rate); a fitted h(T_s) above the bound for an oil is warned about. An
-``--out`` that is a file quenchsim ships is refused; without ``--source`` the file records
-"not given by the user".
+300 C, the conduction limit of its cooling rate); a fitted h(T_s) above the bound for an oil is warned about. The oil
+is written to ``--out``, by default ``./materials/quenchants/NAME.toml`` (NAME: ``--name``, else the curve file's
+stem), where ``quenchsim run`` finds it by name (:mod:`quenchsim.materials`); an ``--out`` in the shipped data
+folder is refused; without ``--source`` the file records "not given by the user".
 """
 
 from __future__ import annotations
@@ -20,7 +21,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from quenchsim.commands.data_option import add_data_option
 from quenchsim.errors import InputError
+from quenchsim.materials import USER_DATA_FOLDER
 from quenchsim.shipped import refuse_shipped_file
 
 NO_SOURCE = "not given by the user"
@@ -45,12 +48,17 @@ def configure(parser: argparse.ArgumentParser) -> None:
                        help="quenchant (or start-shape) file whose [shape] ratios the shortcut keeps")
     _common(sheet)
     show = sub.add_parser("show", help="print a still-bath curve")
-    show.add_argument("name", help="materials/quenchants/NAME.toml or a path")
+    show.add_argument("name", help="a quenchant name (found as quenchsim run finds it) or a path")
+    add_data_option(show)
 
 
 def _common(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--out", type=Path, required=True, help="quenchant file to write (TOML)")
-    p.add_argument("--name", help="quenchant name (default: the file stem)")
+    p.add_argument("--out", type=Path, help="quenchant file to write (default: materials/quenchants/NAME.toml in the "
+                                            "current folder, where a run finds it by name)")
+    p.add_argument("--replace-shipped", action="store_true",
+                   help="maintainers: write into the shipped materials/quenchants folder")
+    add_data_option(p)
+    p.add_argument("--name", help="quenchant name (default: the --out file's stem, else the curve file's stem)")
     p.add_argument("--source", default=NO_SOURCE,
                    help=f"where the curve / figures were published (default: \"{NO_SOURCE}\", recorded as such)")
     p.add_argument("--bath-temperature-C", dest="bath_C", type=float, default=40.0, help="bath temperature of the test")
@@ -60,7 +68,16 @@ def _common(p: argparse.ArgumentParser) -> None:
 
 
 def _check_common(args: argparse.Namespace) -> None:
-    refuse_shipped_file(args.out)
+    """Where the oil is written (``args.out``, default ``./materials/quenchants/NAME.toml``) and the test
+    conditions, checked before any work."""
+    if args.out is None:
+        name = args.name or (args.curve.stem if args.action == "fit" else None)
+        if name is None:
+            raise InputError("--out", None, "is required without --name (from-datasheet has no curve file to name "
+                                            "the oil after)")
+        args.out = Path(USER_DATA_FOLDER) / "quenchants" / f"{name}.toml"
+    if not args.replace_shipped:
+        refuse_shipped_file(args.out)
     if not -20.0 <= args.bath_C <= 300.0:
         raise InputError("--bath-temperature-C", args.bath_C, "must lie between -20 and 300 C")
     if not args.agitation >= 0.0:

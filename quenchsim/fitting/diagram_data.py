@@ -44,8 +44,13 @@ Schema (every entry carries ``source`` and ``kind`` = "printed" (a number printe
     n_nodes = { value = [3, 2.7, 2], source = "starting value" }
 
 Every rule a point breaks is a one-line :class:`quenchsim.errors.InputError` naming the file, the point
-and the rule (finish before start, a curve that does not cool, hardness outside 100-1000 HV, a Jominy
-distance beyond the bar, an unknown phase).
+and the rule, before the fit starts (finish before start, a curve that does not cool, hardness outside
+100-1000 HV or 20-68 HRC, a Jominy distance beyond the bar, an unknown phase). The plausibility bounds below catch
+a unit slip (a time in ms or minutes, a rate in C/min, a temperature in K): T_aust_C within
+:data:`T_AUST_RANGE_C`, a CCT curve starting at or below T_aust_C, its rate / t8/5 within :data:`RATE_RANGE_C_S` /
+:data:`T85_RANGE_S`, TTT holds between :data:`T_MIN_C` and T_aust_C, start times within :data:`TIME_START_RANGE_S`,
+finish times up to :data:`TIME_FINISH_MAX_S`, and a product with a start or finish line on a curve having a
+non-zero fraction on it.
 """
 
 from __future__ import annotations
@@ -73,6 +78,23 @@ HV_RANGE = (100.0, 1000.0)
 FITTABLE = ("T_upper_C", *C_CURVE_PARAMETERS, "n_nodes")
 """Parameters of a reaction a [fit] table may free (T_ref_C only places the reference temperature, n_nodes_T_C the
 nodes of a piecewise-linear n(T))."""
+T_AUST_RANGE_C = (700.0, 1200.0)
+"""Plausible austenitising temperature of a steel, C: above Ac1 of any bearing or tool steel (~720-760 C), below
+the grain-coarsening solution treatments; a value outside is a typo or a temperature in K/F."""
+T_MIN_C = -200.0
+"""Lowest temperature of a cooling curve or TTT hold, C (liquid-nitrogen sub-zero treatment is -196 C); lower is
+below absolute zero or a unit slip."""
+RATE_RANGE_C_S = (1e-3, 1e3)
+"""Plausible linear cooling rate of a CCT curve, C/s: CCT diagrams span ~0.01 C/s (furnace cooling) to a few
+hundred C/s (dilatometer gas quench); outside, the rate is likely in C/min or C/h, or in K/ms."""
+T85_RANGE_S = (0.1, 1e5)
+"""Plausible t8/5 of a Newtonian CCT curve, s (lambda = t8/5 / 100 s): ~1 s (water-quenched thin section) to ~1e4 s
+(furnace); outside, a unit slip (ms, minutes x 60 forgotten twice)."""
+TIME_START_RANGE_S = (1e-2, 1e5)
+"""Plausible TTT start (1 %) time, s: the fastest noses of plain carbon steels lie at ~0.1-1 s, TTT diagrams end at
+1e5-1e6 s; a start below 0.01 s or above 1e5 s (28 h) is a time in ms or in minutes/hours read as seconds."""
+TIME_FINISH_MAX_S = 1e6
+"""Latest plausible TTT finish (99 %) time, s: the right edge of a TTT diagram (about 12 days)."""
 JOMINY_BAR_LENGTH_MM = 100.0
 """Length of the standard end-quench bar (ASTM A255 / ISO 642: 25 mm diameter x 100 mm)."""
 NEWTON_T_HIGH_C, NEWTON_T_LOW_C = 800.0, 500.0
@@ -249,11 +271,21 @@ def _curve(r: _Reader, table: Mapping[str, Any], where: str, T_aust_C: float) ->
     given = [k for k in ("cooling_rate_C_s", "t8_5_s", "lambda") if k in table]
     if len(given) != 1:
         raise r.error(where, sorted(table), "give exactly one of cooling_rate_C_s, t8_5_s, lambda")
+    if T0 > T_aust_C:
+        raise r.error(f"{where}.T_start_C", T0, f"a CCT curve starts at or below the austenitising temperature "
+                                               f"T_aust_C = {T_aust_C:g} C")
     if not T1 < T0:
         raise r.error(f"{where}.T_end_C", T1, f"a cooling curve must cool: T_end_C must be below T_start_C = {T0:g}")
+    if T1 < T_MIN_C:
+        raise r.error(f"{where}.T_end_C", T1, f"must be >= {T_MIN_C:g} C (degrees C)")
     value = r.number(table, given[0], where)
     if value <= 0:
         raise r.error(f"{where}.{given[0]}", value, "a cooling curve must cool: the rate / cooling time must be > 0")
+    lo, hi, unit = {"cooling_rate_C_s": (*RATE_RANGE_C_S, "C/s"), "t8_5_s": (*T85_RANGE_S, "s"),
+                    "lambda": (T85_RANGE_S[0] / 100.0, T85_RANGE_S[1] / 100.0, "(t8/5 in 100 s)")}[given[0]]
+    if not lo <= value <= hi:
+        raise r.error(f"{where}.{given[0]}", value, f"must lie within {lo:g}-{hi:g} {unit} for a CCT curve: is it "
+                                                    "in another unit (C/min, ms)?")
     if given[0] == "cooling_rate_C_s":
         return CoolingCurve(T_start_C=T0, T_end_C=T1, rate_C_s=value)
     if not (T1 < NEWTON_T_LOW_C and T0 >= NEWTON_T_HIGH_C):
@@ -284,6 +316,10 @@ def _cct(r: _Reader, i: int, table: Any, T_aust_C: float) -> CCTPoint:
             raise r.error(f"{where}.fractions.{p}", x, "a phase fraction must lie within 0-1")
     if sum(fractions.values()) > 1.0 + 1e-6:
         raise r.error(f"{where}.fractions", fractions, "phase fractions must not add up to more than 1")
+    for p, T in {**start, **finish}.items():
+        if p in fractions and fractions[p] <= 0.0:
+            raise r.error(f"{where}.fractions.{p}", fractions[p], f"contradicts the {p} line at {T:g} C on this curve "
+                                                                  "(a start is 1 % transformed): must be > 0")
     hv = r.hardness(table, where)
     if hv is not None:
         r.check_hv(hv[0], f"{where}.hardness")
@@ -313,7 +349,7 @@ def _series(r: _Reader, table: Mapping[str, Any], keys: tuple[str, ...], where: 
     return arrays
 
 
-def _ttt(r: _Reader, i: int, table: Any) -> list[TTTPoint]:
+def _ttt(r: _Reader, i: int, table: Any, T_aust_C: float) -> list[TTTPoint]:
     where = f"ttt[{i}]"
     if not isinstance(table, Mapping):
         raise r.error(where, table, "must be a table")
@@ -328,10 +364,20 @@ def _ttt(r: _Reader, i: int, table: Any) -> list[TTTPoint]:
     points = []
     for k in range(T.size):
         w = f"{where} point {k} (T_C = {T[k]:g})"
+        if not T_MIN_C <= T[k] < T_aust_C:
+            raise r.error(f"{w}.T_C", float(T[k]), f"an isothermal hold must lie within {T_MIN_C:g} C and the "
+                                                   f"austenitising temperature T_aust_C = {T_aust_C:g} C")
         if not ts[k] > 0:
             raise r.error(f"{w}.t_start_s", float(ts[k]), "must be > 0")
+        if not TIME_START_RANGE_S[0] <= ts[k] <= TIME_START_RANGE_S[1]:
+            raise r.error(f"{w}.t_start_s", float(ts[k]), f"must lie within {TIME_START_RANGE_S[0]:g}-"
+                                                          f"{TIME_START_RANGE_S[1]:g} s for a TTT start: is it in ms, "
+                                                          "minutes or hours?")
         if not tf[k] > ts[k]:
             raise r.error(f"{w}.t_finish_s", float(tf[k]), f"finish before start: must be later than t_start_s = {ts[k]:g}")
+        if tf[k] > TIME_FINISH_MAX_S:
+            raise r.error(f"{w}.t_finish_s", float(tf[k]), f"must be <= {TIME_FINISH_MAX_S:g} s (the right edge of a "
+                                                           "TTT diagram): is it in ms?")
         points.append(TTTPoint(where=w, phase=phase, T_C=float(T[k]), t_start_s=float(ts[k]), t_finish_s=float(tf[k]),
                                time_uncertainty_factor=factor, source=source, kind=kind))
     return points
@@ -428,8 +474,11 @@ def load_diagram_data(path: str | Path) -> DiagramData:
         if key not in allowed:
             raise r.error(key, raw[key], f"unknown entry; allowed: {', '.join(sorted(allowed))}")
     T_aust = r.number(raw, "T_aust_C", "file", positive=True)
+    if not T_AUST_RANGE_C[0] <= T_aust <= T_AUST_RANGE_C[1]:
+        raise r.error("T_aust_C", T_aust, f"an austenitising temperature must lie within {T_AUST_RANGE_C[0]:g}-"
+                                          f"{T_AUST_RANGE_C[1]:g} C (degrees C, not K or F)")
     cct = tuple(_cct(r, i, t, T_aust) for i, t in enumerate(raw.get("cct", [])))
-    ttt = tuple(p for i, t in enumerate(raw.get("ttt", [])) for p in _ttt(r, i, t))
+    ttt = tuple(p for i, t in enumerate(raw.get("ttt", [])) for p in _ttt(r, i, t, T_aust))
     jominy = tuple(p for i, t in enumerate(raw.get("jominy", [])) for p in _jominy(r, i, t))
     fit = {name: _fit_spec(r, name, t) for name, t in raw.get("fit", {}).items()}
     included = raw.get("data_from", [])

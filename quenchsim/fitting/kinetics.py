@@ -23,6 +23,7 @@ of the normalised Jacobian with a singular value below 1e-6 of the largest) and 
 from __future__ import annotations
 
 import dataclasses
+import json
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -35,7 +36,7 @@ from scipy.optimize import least_squares
 
 from quenchsim.errors import InputError, QuenchsimError
 from quenchsim.fitting.diagram_data import CCTPoint, CoolingCurve, DiagramData, ReactionFitSpec
-from quenchsim.materials import load_material, materials_dir
+from quenchsim.materials import find_data_file, load_material
 from quenchsim.materials.properties import PHASES
 from quenchsim.metallurgy import Kinetics, Reaction, advance, hardness_HV, initial_state, load_kinetics
 from quenchsim.metallurgy.cct import FINISH_SHARE, MIN_FINISH_AMOUNT, START_FRACTION, crossing_time
@@ -384,11 +385,25 @@ def _strip_reactions(text: str, reactions: Sequence[str]) -> str:
     return "".join(out).rstrip() + "\n"
 
 
-def write_material(result: FitResult, out: Path, data_file: str) -> Path:
-    """Write the base material with its fitted reactions replaced; checks that the file loads."""
+def _identity(text: str, name: str, description: str) -> str:
+    """``text`` (a material file) with its top-level ``name`` and ``description`` replaced by these."""
+    header = re.search(r"^\[", text, flags=re.MULTILINE)
+    head, tables = (text[:header.start()], text[header.start():]) if header else (text, "")
+    head = re.sub(r"^(name|description)\s*=.*\n?", "", head, flags=re.MULTILINE)
+    own = f"name = {json.dumps(name)}\ndescription = {json.dumps(description)}\n"
+    return head.rstrip("\n") + ("\n" if head.strip() else "") + own + "\n" + tables
+
+
+def write_material(result: FitResult, out: Path, data_file: str, name: str | None = None,
+                   description: str = "") -> Path:
+    """Write the base material with its fitted reactions replaced, once, and check that the file loads. With
+    ``name`` the file's top-level ``name`` and ``description`` are these (a new steel is the user's, not the base
+    material it was fitted from); without, the base material's are kept (a shipped steel regenerated in place)."""
     data = result.data
-    base_path = Path(data.material) if data.material.endswith(".toml") else materials_dir() / f"{data.material}.toml"
-    text = _strip_reactions(base_path.read_text(), list(data.fit))
+    text = _strip_reactions(find_data_file(data.material, field=f"{data.path.name}: material").read_text(),
+                            list(data.fit))
+    if name is not None:
+        text = _identity(text, name, description)
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(text + "\n" + fitted_block(result, data_file))

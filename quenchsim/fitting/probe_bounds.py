@@ -29,8 +29,8 @@ time in the wrong unit (e.g. ms: 52,000 s)."""
 MAX_OIL_HTC_W_M2K = 20000.0
 """Upper bound of a quench oil's still-bath h(T_s), W/m2K. The nucleate-boiling peak of quench oils lies at a few
 thousand W/m2K (the shipped fast oil, materials/quenchants/astm_d6200_fast_oil.toml, peaks at 5,455 W/m2K at 567 C;
-the quasi-steady starting estimate of the fit, quenchsim.fitting.quenchant.quasi_steady_htc, is clipped at the same
-20,000); h well above 20,000 W/m2K is water or brine boiling, not oil. A fit above it is kept (the user may know
+the quasi-steady starting estimate of the fit, quenchsim.fitting.quenchant.quasi_steady_htc, is clipped at this
+constant); h well above 20,000 W/m2K is water or brine boiling, not oil. A fit above it is kept (the user may know
 better) but warned about."""
 
 

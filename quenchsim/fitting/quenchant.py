@@ -37,6 +37,7 @@ from scipy.optimize import least_squares
 from quenchsim.bath.quenchant import STILL_BATH_KIND
 from quenchsim.errors import InputError, require
 from quenchsim.fitting.probe import ProbeCurve, ProbeModel, step_schedule
+from quenchsim.fitting.probe_bounds import MAX_OIL_HTC_W_M2K
 from quenchsim.materials import load_data_file
 
 TIME_TEMPERATURE = "time_temperature"
@@ -185,7 +186,7 @@ def quasi_steady_htc(time_s: np.ndarray, centre_C: np.ndarray, model: ProbeModel
     """A first estimate of h(T_s) from the centre curve, in the regular (quasi-steady) regime of a long
     cylinder: every point cools at the centre's rate, so the surface flux is q = rho c_p (V/A) dT/dt and the
     parabolic profile gives T_s = T_c - q R / (2 k) (uniform heat sink in a cylinder). Properties at the
-    centre temperature. Only the starting point of the fit."""
+    centre temperature. Only the starting point of the fit, clipped to 50 W/m2K .. :data:`MAX_OIL_HTC_W_M2K`."""
     spec = model.spec
     R, L = spec.radius_m, spec.length_m
     v_over_a = R * L / (2.0 * (L + R))
@@ -198,7 +199,7 @@ def quasi_steady_htc(time_s: np.ndarray, centre_C: np.ndarray, model: ProbeModel
     h = q[ok] / (Ts[ok] - model.bath_C)
     order = np.argsort(Ts[ok])
     h_nodes = np.interp(nodes_C, Ts[ok][order], h[order])
-    return np.clip(h_nodes, 50.0, 2.0e4)
+    return np.clip(h_nodes, 50.0, MAX_OIL_HTC_W_M2K)
 
 
 @dataclass

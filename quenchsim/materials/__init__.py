@@ -1,45 +1,128 @@
-"""Material and quenchant data files (materials/*.toml) and their property functions.
+"""Material and quenchant data files (materials/*.toml), where they are found, and their property functions.
 
-A steel is described by ``materials/NAME.toml`` (composition, thermal properties, latent heats,
-kinetics, hardness) and optionally ``materials/NAME.mechanics.toml`` (elastic, plastic,
-specific-volume and TRIP data); :func:`load_material` merges the second into the key
-``"mechanics"``. Every number in those files carries a ``source``. The property spec forms are
+A steel is described by ``NAME.toml`` (composition, thermal properties, latent heats, kinetics, hardness) and
+optionally ``NAME.mechanics.toml`` beside it (elastic, plastic, specific-volume and TRIP data);
+:func:`load_material` merges the second into the key ``"mechanics"``. Quenchants are ``quenchants/NAME.toml``,
+bath layouts ``baths/NAME.toml``. Every number in those files carries a ``source``. The property spec forms are
 described in :mod:`quenchsim.materials.properties`.
+
+**Where a name is found** (:func:`find_data_file`, the one place that resolves names; docs/guide/run_a_ring.md,
+"Your own data"): a name is looked up in these data folders, first match wins, each laid out like the shipped
+``materials/`` (steels at the top, ``quenchants/``, ``baths/``):
+
+1. the folders of ``--data DIR`` (run, sweep, calibrate, optimise, bath, cct, material fit, quenchant), in the
+   order given;
+2. the folders of the environment variable ``QUENCHSIM_DATA`` (``os.pathsep``-separated);
+3. ``./materials`` of the current directory (where the fitters write by default);
+4. the shipped data (:func:`materials_dir`: the checkout's ``materials/``, or the wheel's copy), read-only.
+
+So a user's file shadows a shipped one of the same name in the user's runs. A name ending in ``.toml`` is a path
+and is read as it is. The validation studies run with the shipped data only (:func:`shipped_data_only`, used by
+``quenchsim validate``): a user's folder never changes which steel or oil a study loads, nor its fingerprint.
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
 import tomllib
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from quenchsim.errors import InputError
 from quenchsim.materials.properties import PHASES, Property, parse_property
+from quenchsim.shipped import shipped_dir
 
 __all__ = ["PHASES", "Property", "parse_property", "materials_dir", "load_material", "ThermalProperties",
-           "thermal_properties", "load_data_file"]
+           "thermal_properties", "load_data_file", "find_data_file", "data_folders", "use_data_folders",
+           "shipped_data_only", "USER_DATA_FOLDER", "DATA_ENV"]
+
+DATA_ENV = "QUENCHSIM_DATA"
+"""Environment variable: the user's data folders, ``os.pathsep``-separated, searched before the shipped data
+(``--data DIR`` puts its folders in front of it, so that Dask workers started by the command inherit them)."""
+
+SHIPPED_ONLY_ENV = "QUENCHSIM_SHIPPED_DATA_ONLY"
+"""Set (to "1") by :func:`shipped_data_only`: names resolve in the shipped data only."""
+
+USER_DATA_FOLDER = "materials"
+"""The current directory's data folder, searched after the ``--data`` / ``QUENCHSIM_DATA`` folders and written by
+the fitters by default (``./materials/NAME.toml``, ``./materials/quenchants/NAME.toml``)."""
 
 
 def materials_dir() -> Path:
-    """The data directory: ``$QUENCHSIM_MATERIALS``, else the checkout's ``materials/`` (source or editable
-    install), else the copy an installed wheel carries in the package (``quenchsim/_data/materials``)."""
-    env = os.environ.get("QUENCHSIM_MATERIALS")
-    if env:
-        return Path(env)
-    package = Path(__file__).resolve().parents[1]
-    checkout = package.parent / "materials"
-    return checkout if checkout.is_dir() else package / "_data" / "materials"
+    """The shipped data folder (read-only): the checkout's ``materials/`` (source or editable install), else the
+    copy an installed wheel carries in the package (``quenchsim/_data/materials``)."""
+    return shipped_dir("materials")
+
+
+def data_folders() -> list[Path]:
+    """The data folders a name is looked up in, first match wins: the ``--data`` / ``QUENCHSIM_DATA`` folders,
+    ``./materials``, then the shipped folder (each once; the shipped one only inside :func:`shipped_data_only`)."""
+    shipped = materials_dir()
+    folders: list[Path] = []
+    if not os.environ.get(SHIPPED_ONLY_ENV):
+        folders += [Path(p).expanduser() for p in os.environ.get(DATA_ENV, "").split(os.pathsep) if p]
+        folders.append(Path.cwd() / USER_DATA_FOLDER)
+    out: list[Path] = []
+    for folder in [*folders, shipped]:
+        if folder.resolve() not in [f.resolve() for f in out]:
+            out.append(shipped if folder.resolve() == shipped.resolve() else folder)
+    return out
+
+
+def use_data_folders(folders: Iterable[str | Path]) -> None:
+    """Put ``folders`` (``--data DIR``) in front of the search path of this process and the processes it starts. A
+    folder that does not exist is an :class:`InputError`."""
+    folders = [Path(f).expanduser().resolve() for f in folders]
+    for folder in folders:
+        if not folder.is_dir():
+            raise InputError("--data", str(folder), "is not a folder (a data folder laid out like materials/: "
+                                                    "NAME.toml, quenchants/NAME.toml)")
+    old = [p for p in os.environ.get(DATA_ENV, "").split(os.pathsep) if p]
+    os.environ[DATA_ENV] = os.pathsep.join([*map(str, folders), *old])
+
+
+@contextlib.contextmanager
+def shipped_data_only() -> Iterator[None]:
+    """Within the block (and in processes started in it) names resolve in the shipped data only: the validation
+    studies and their cached runs never depend on a user's folders."""
+    old = os.environ.get(SHIPPED_ONLY_ENV)
+    os.environ[SHIPPED_ONLY_ENV] = "1"
+    try:
+        yield
+    finally:
+        if old is None:
+            os.environ.pop(SHIPPED_ONLY_ENV, None)
+        else:
+            os.environ[SHIPPED_ONLY_ENV] = old
+
+
+def _known(subdir: str) -> list[str]:
+    return sorted({p.stem for f in data_folders() for p in (f / subdir).glob("*.toml") if ".mechanics" not in p.name})
+
+
+def find_data_file(name: str, subdir: str = "", field: str = "material") -> Path:
+    """The file of data name ``name`` in ``subdir`` ("" for steels, "quenchants", "baths") on the search path
+    (:func:`data_folders`, first match wins), or the path ``name`` when it ends in ``.toml``. An unknown name is an
+    :class:`InputError` that lists the folders searched and the names known there."""
+    if name.endswith(".toml"):
+        path = Path(name).expanduser()
+        if not path.is_file():
+            raise InputError(field, name, "no such file")
+        return path
+    for folder in data_folders():
+        path = folder / subdir / f"{name}.toml"
+        if path.is_file():
+            return path
+    searched = ", ".join(str(f / subdir) for f in data_folders())
+    raise InputError(field, name, f"unknown; known: {', '.join(_known(subdir)) or 'none'} (searched {searched})")
 
 
 def load_data_file(name: str, subdir: str = "", field: str = "material") -> dict[str, Any]:
-    """Load ``materials/[subdir/]NAME.toml`` (or an explicit path ending in .toml)."""
-    folder = materials_dir() / subdir
-    path = Path(name) if name.endswith(".toml") else folder / f"{name}.toml"
-    if not path.is_file():
-        known = sorted(p.stem for p in folder.glob("*.toml") if ".mechanics" not in p.name)
-        raise InputError(field, name, f"unknown; known: {', '.join(known) or 'none'}")
+    """The table of data file ``name`` (:func:`find_data_file`)."""
+    path = find_data_file(name, subdir, field)
     with path.open("rb") as fh:
         try:
             return tomllib.load(fh)
@@ -48,10 +131,11 @@ def load_data_file(name: str, subdir: str = "", field: str = "material") -> dict
 
 
 def load_material(name: str, field: str = "material") -> dict[str, Any]:
-    """The raw material table of steel ``name``, with ``NAME.mechanics.toml`` merged as ``"mechanics"``."""
-    data = load_data_file(name, field=field)
-    mech = (Path(name).with_suffix("") if name.endswith(".toml") else materials_dir() / name)
-    mech_path = mech.parent / f"{mech.name}.mechanics.toml"
+    """The raw material table of steel ``name``, with ``NAME.mechanics.toml`` (beside the steel's file) merged as
+    ``"mechanics"``."""
+    path = find_data_file(name, field=field)
+    data = load_data_file(str(path), field=field)
+    mech_path = path.with_name(f"{path.stem}.mechanics.toml")
     if "mechanics" not in data and mech_path.is_file():
         with mech_path.open("rb") as fh:
             data["mechanics"] = tomllib.load(fh)
