@@ -19,6 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 from tqdm import tqdm
 
+from quenchsim.thermal.steps import TARGET
+
 log = logging.getLogger("quenchsim")
 
 BAR_FORMAT = "{desc}: {percentage:3.0f}%|{bar}| [{elapsed}{postfix}]"
@@ -193,7 +195,7 @@ class CoolingProgress:
             counted = self._diffusional_steps(now)
         else:
             incubated = now.incubation_share * self._to_come(now) if now.incubation_share > 0.0 else 0.0
-            counted = self._film_steps(now) + STEPS_PER_LIMIT_OF_MEAN * incubated / (0.9 * self.max_dX)
+            counted = self._film_steps(now) + STEPS_PER_LIMIT_OF_MEAN * incubated / (TARGET * self.max_dX)
         counted += self._drop_steps(now, self.max_dT_K) + self._growth_steps(now)
         if math.isnan(counted):
             return math.nan
@@ -234,7 +236,7 @@ class CoolingProgress:
         if math.isnan(film):
             return steps_left
         cooling = max(self._drop_steps(now, self.mechanics_max_dT_K),
-                      now.austenite_fraction / (0.9 * self.mechanics_max_dX))
+                      now.austenite_fraction / (TARGET * self.mechanics_max_dX))
         growth = self._growth_steps(now)
         film *= min(self.max_dT_K / self.mechanics_max_dT_K, 1.0)
         return max(min(steps_left, film + cooling + growth), self._martensite_steps(now) + growth)
@@ -259,7 +261,7 @@ class CoolingProgress:
                 self._martensite = (now.steps_done, *self._martensite[1:])
         _, stress_then, formed_then, steps = self._martensite
         taken = max(now.stress_steps_done - stress_then,
-                    (now.martensite_fraction - formed_then) / (0.9 * self.mechanics_max_dX))
+                    (now.martensite_fraction - formed_then) / (TARGET * self.mechanics_max_dX))
         return max(steps - taken, 0.0) * max(now.austenite_fraction - self._to_come(now), 0.0) / now.austenite_fraction
 
     def _film_steps(self, now: StepState) -> float:
@@ -293,7 +295,7 @@ class CoolingProgress:
         """The steps a temperature limit ``max_dT_K`` needs: it holds at the surface first, then inside, so the
         surface's and the hottest node's drops to the end temperature one after the other, at 90 % of the limit."""
         drop_K = max(now.surface_mean_C - self.T_end_C, 0.0) + max(float(np.max(now.T_nodes_C)) - self.T_end_C, 0.0)
-        return drop_K / (0.9 * max_dT_K)
+        return drop_K / (TARGET * max_dT_K)
 
     def _steps_to_cover(self, time_s: float, dt_s: float) -> float:
         """The fewest steps that cover ``time_s`` of simulated time from a step of ``dt_s``: each step at most
