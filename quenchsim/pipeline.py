@@ -22,7 +22,8 @@ from typing import Any
 
 import numpy as np
 from quenchsim.case import Case
-from quenchsim.quench_setup import QuenchModel, stage_htc, stages, step_controller
+from quenchsim.materials import load_material
+from quenchsim.quench_setup import QuenchModel, require_mechanics_data, stage_htc, stages, step_controller
 from quenchsim.errors import QuenchsimError, RunInterrupted, SolverError
 from quenchsim.io.checkpoint import read_resumable, restore_run, save_run
 from quenchsim.io.signals import StopRequest, signals_as_stop_request
@@ -75,6 +76,8 @@ class QuenchRun(QuenchModel):
         # checks the folder and clears an earlier run's outputs (stale frames, an earlier summary's status)
         self.checkpoint_path = Path(out_dir) / files.CHECKPOINT_NPZ
         checkpoint = read_resumable(self.checkpoint_path, case.resolved(), Path(out_dir)) if resume else None
+        material = load_material(case.material)
+        require_mechanics_data(case, material)   # a transforming steel without mechanics data: refused, nothing written
         if not resume:
             claim_run_folder(out_dir, force)
         self.writer = RunWriter(out_dir)
@@ -85,7 +88,7 @@ class QuenchRun(QuenchModel):
         self.bar = RunProgress(f"{case.name}[{case.condition}]" if case.condition else case.name,
                                sum(st.duration_s for st in stages(case)), enabled=progress)
         self.bar.phase("meshing")
-        super().__init__(case, self.writer.mesh_path)
+        super().__init__(case, material, self.writer.mesh_path)
         self.counts: dict[str, Any] = {"steps": 0, "rejected": 0, "heat_out_J": 0.0, "latent_J": 0.0}
         self.position: dict[str, Any] = {"stage": 0, "stage_end_s": None, "dt_s": case.time.dt_initial_s}
         self.stress = None if self.mech is None else StressCoupling(

@@ -13,6 +13,7 @@ import skfem
 
 from quenchsim import mechanics, metallurgy
 from quenchsim.case import Case
+from quenchsim.errors import InputError
 from quenchsim.geometry import BoundaryPoints, SectionMesh, boundary_points, mesh_profile
 from quenchsim.geometry.profile import MM, Profile
 from quenchsim.fem import INTORDER
@@ -114,14 +115,31 @@ def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
     return SurfaceTemperatureHTC(bath.air_htc(points, case.air.temperature_C, case.air.emissivity))
 
 
+def require_mechanics_data(case: Case, material: dict[str, Any] | None = None) -> None:
+    """Refuse a mechanics run of a steel that has no mechanics data, before any work: the run would compute no
+    dimensions, distortion or stresses (a fitted steel, ``material = "path/NAME.toml"``, has none until
+    ``NAME.mechanics.toml`` is put beside it). A steel that does not transform is thermal only and passes.
+    ``material``: the case's material when loaded already."""
+    if not case.mechanics.enabled:
+        return
+    material = load_material(case.material) if material is None else material
+    if "mechanics" in material or not transforms(material):
+        return
+    stem = Path(case.material).with_suffix("") if case.material.endswith(".toml") else Path(case.material)
+    raise InputError("material", case.material, f"has no mechanics data ({stem.name}.mechanics.toml beside it or a "
+                     "[mechanics] table in it): no dimensions or stresses could be computed; add that file "
+                     "(docs/guide/bring_a_steel.md) or run without mechanics: --set mechanics.enabled=false")
+
+
 class QuenchModel:
     """The discretised quench of a case: the section in its two geometries, the thermal solver with the phase model,
     the stress solver when the stress is solved (``mech``, None otherwise), the final part and the probes' reading
     matrix (their positions move with the section to the austenitised geometry)."""
 
-    def __init__(self, case: Case, mesh_path: Path) -> None:
-        """Mesh the case's section (written to ``mesh_path``) and build the solvers on it."""
-        self.material = load_material(case.material)
+    def __init__(self, case: Case, material: dict[str, Any], mesh_path: Path) -> None:
+        """Mesh the case's section (written to ``mesh_path``) and build the solvers on it (``material``: the case's,
+        :func:`load_material`)."""
+        self.material = material
         self.T_aust = case.process.austenitising_temperature_C
         self.T_room = case.process.room_temperature_C
         built = build_section(case, self.material, mesh_path)
