@@ -74,11 +74,11 @@ class StepState:
     run for a diffusional reaction (:func:`quenchsim.metallurgy.incubation_share`; 1 once one has started);
     ``diffusional_fraction``: the mean fraction of pearlite + bainite formed so far; ``diffusional_to_come``: asked
     only when the estimate needs it, the mean fraction of pearlite + bainite still to form
-    (:func:`quenchsim.metallurgy.diffusional_fraction_to_come` at each point's cooling rate now; None: not known);
+    (:func:`quenchsim.progress.forecasts.diffusional_fraction_to_come` at each point's cooling rate now; None: not known);
     ``stage_ambient_C``: the current stage's ambient (the bath; NaN: not known); ``martensite_fraction``: the mean
     martensite formed so far; ``martensite_limit_steps``: asked only when the estimate needs it, the steps a limit of
     ``time.mechanics_max_dX`` on the martensite still needs
-    (:func:`quenchsim.metallurgy.martensite_limit_steps_to_come`; None: no martensite to form);
+    (:func:`quenchsim.progress.forecasts.martensite_limit_steps_to_come`; None: no martensite to form);
     ``stress_steps_done``: the stress steps taken so far."""
 
     steps_done: int
@@ -126,7 +126,7 @@ class CoolingProgress:
       is shown meanwhile); then the surface's and the hottest node's drops to the end temperature over the
       temperature limit ``time.max_dT_K`` (the limit holds at the surface first, inside later; steps at 90 % of
       the limit, as the controller aims); the steps of the pearlite/bainite limit, :data:`STEPS_PER_LIMIT_OF_MEAN`
-      times the mean pearlite + bainite still to form (:func:`quenchsim.metallurgy.diffusional_fraction_to_come`,
+      times the mean pearlite + bainite still to form (:func:`quenchsim.progress.forecasts.diffusional_fraction_to_come`,
       each point cooling on at its own rate, asked every :data:`FORECAST_EVERY_STEPS` steps) over 0.9 ``max_dX``,
       counted as far as the incubation of pearlite or bainite has run somewhere (``incubation_share``: the limit
       holds only those, which form once incubated); and the steps the growth factor needs to reach
