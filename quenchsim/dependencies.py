@@ -28,7 +28,12 @@ from pathlib import Path
 PACKAGE = "quenchsim"
 OBSERVERS = frozenset({"quenchsim.progress"})
 """Modules that only display a run (the progress bar and its time-left estimate): the run calls them, but nothing
-they return reaches a result, so an edit there cannot move a number."""
+they return reaches a result, so an edit there cannot move a number. A package's submodules are observers too."""
+
+
+def _observer(module: str) -> bool:
+    """Whether ``module`` is one of the :data:`OBSERVERS` or a submodule of one."""
+    return any(module == o or module.startswith(f"{o}.") for o in OBSERVERS)
 BY_NAME = frozenset({"quenchsim.validation"})
 """Modules followed per imported name: the studies' runner, whose helpers pull in very different code."""
 MATERIALS_READERS = ("quenchsim.materials",)
@@ -173,14 +178,14 @@ class Closure:
     def _keep(self, module: str) -> bool:
         """Record ``module``'s file; False when it is an observer or not a module of the root."""
         path = self.path(module)
-        if module in OBSERVERS or path is None:
+        if _observer(module) or path is None:
             return False
         self.modules[module] = path
         return True
 
     def add_imports(self, imports: Iterable[_Import]) -> None:
         for imp in imports:
-            if imp.module in OBSERVERS:
+            if _observer(imp.module):
                 continue
             submodules = [f"{imp.module}.{n}" for n in imp.names if self.path(f"{imp.module}.{n}") is not None]
             for sub in submodules:

@@ -37,7 +37,9 @@ def edit(path: Path, old: str, new: str) -> None:
 def test_a_progress_bar_edit_leaves_every_study_fresh_and_a_bath_edit_only_the_bearings(checkout):
     before = fingerprints(checkout)
     assert len(before) > 20 and len(set(before.values())) == len(before)
-    edit(checkout / "quenchsim" / "progress.py", '"{desc}: {percentage:3.0f}%', '"{desc} - {percentage:3.0f}%')
+    edit(checkout / "quenchsim" / "progress" / "__init__.py", '"{desc}: {percentage:3.0f}%', '"{desc} - {percentage:3.0f}%')
+    assert fingerprints(checkout) == before
+    edit(checkout / "quenchsim" / "progress" / "forecasts.py", '"""', '"""Edited. ')   # a submodule: an observer too
     assert fingerprints(checkout) == before
 
     edit(checkout / "quenchsim" / "bath" / "htc.py", '"""', '"""Edited. ')
@@ -65,7 +67,7 @@ def test_a_case_or_material_edit_stales_the_studies_that_read_it(checkout):
 def test_the_inputs_name_the_files_used(checkout):
     studies = {s.key: s for s in v.discover(checkout / "validation")}
     ring_b = v.study_inputs(studies["quench/ring_b"], checkout)
-    assert "quenchsim/pipeline.py" in ring_b.code and "quenchsim/progress.py" not in ring_b.code
+    assert "quenchsim/pipeline.py" in ring_b.code and not any(c.startswith("quenchsim/progress") for c in ring_b.code)
     assert "quenchsim/validation.py::cached_run" in ring_b.code and "quenchsim/validation.py" not in ring_b.code
     assert {"cases/srb_outer_ring.toml", "materials/SUJ3.toml", "validation/quench/ring_a/study.py"} <= set(ring_b.data)
     hertz = v.study_inputs(studies["bearings/hertz"], checkout)

@@ -12,9 +12,9 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 
 from quenchsim.materials import load_material
-from quenchsim.metallurgy import (advance, diffusional_fraction_to_come, incubation_share, initial_state,
-                                  load_kinetics, martensite_limit_steps_to_come)
-from quenchsim.metallurgy.transform import MARTENSITE_FORECAST_OWN_RATE_WEIGHT
+from quenchsim.metallurgy import advance, incubation_share, initial_state, load_kinetics
+from quenchsim.progress.forecasts import (MARTENSITE_FORECAST_OWN_RATE_WEIGHT, diffusional_fraction_to_come,
+                                          martensite_limit_steps_to_come)
 from quenchsim.metallurgy.laws import li_sigmoid_integral
 
 R_CAL = 1.98720  # cal/(mol K)

@@ -184,12 +184,12 @@ def test_resume_refuses_another_case_and_a_folder_without_checkpoint(tmp_path, m
 
 
 def test_ctrl_c_while_meshing_leaves_an_interrupted_summary(tmp_path, monkeypatch):
-    import quenchsim.pipeline as pipeline
+    import quenchsim.quench_setup as quench_setup
 
     def interrupted_meshing(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(pipeline, "build_section", interrupted_meshing)
+    monkeypatch.setattr(quench_setup, "build_section", interrupted_meshing)
     with pytest.raises(RunInterrupted, match="during setup"):
         qs.run(case_from_dict(plastic_ring()), tmp_path / "run", progress=False)
     stopped = json.loads((tmp_path / "run" / files.SUMMARY_JSON).read_text())

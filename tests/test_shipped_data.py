@@ -13,7 +13,8 @@ import pytest
 import quenchsim.shipped as shipped
 from quenchsim.case import load_case
 from quenchsim.cli import main
-from quenchsim.commands.run import require_mechanics_data, summary_table
+from quenchsim.commands.run import summary_table
+from quenchsim.quench_setup import require_mechanics_data
 from quenchsim.errors import InputError
 from quenchsim.fitting.kinetics import _identity
 
@@ -139,6 +140,16 @@ def test_a_steel_without_mechanics_is_refused_with_the_file_and_the_way_out(tmp_
         require_mechanics_data(load_case(case, "1"))
     require_mechanics_data(load_case(case, "1", {"mechanics.enabled": False}))   # the user's choice: passes
     require_mechanics_data(load_case(_user_steel_case(tmp_path / "b", with_mechanics=True), "1"))
+
+
+def test_the_api_refuses_a_steel_without_mechanics_before_writing_anything(tmp_path):
+    """The check is the run's own (where it loads the material), so ``quenchsim.run`` refuses as the CLI does."""
+    import quenchsim as qs
+
+    case = load_case(_user_steel_case(tmp_path, with_mechanics=False), "1")
+    with pytest.raises(InputError, match="has no mechanics data"):
+        qs.run(case, tmp_path / "run", progress=False)
+    assert not (tmp_path / "run").exists()
 
 
 def test_the_terminal_says_when_no_dimensions_were_computed():

@@ -44,8 +44,8 @@ def test_outputs_are_on_the_final_part_at_room_temperature(tmp_path):
     assert summary["hardness"]["through_hardened_mid"]       # which the terminal says as "through-hardened"
     traverse = load(tmp_path).hardness_traverse
     assert traverse["depth_mm"].max() <= wall_mm
-    final = run.final_vertices()
-    assert abs(run._rigid_axial_shift_m(final)) < 1e-12
+    final = run.final_part.vertices()
+    assert abs(run.final_part.rigid_axial_shift_m(final)) < 1e-12
     last = meshio.read(sorted(tmp_path.glob("results_*.vtu"))[-1])
     np.testing.assert_allclose(last.points[:, :2].T, run.before_mesh.p, atol=1e-15)
     np.testing.assert_allclose((last.points[:, :2] + last.point_data["displacement_m"][:, :2]).T, final, atol=1e-15)

@@ -56,7 +56,6 @@ def run(args: argparse.Namespace) -> int:
 
     overrides = parse_sets(args.set)
     case = load_case(resolve_case(args.case), args.condition, overrides)
-    require_mechanics_data(case)
     if args.mesh_size is not None:
         if args.mesh_size <= 0:
             raise InputError("--mesh-size", args.mesh_size, "must be > 0 (mm)")
@@ -85,23 +84,6 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(summary_table(s, out))
     return 0
-
-
-def require_mechanics_data(case) -> None:
-    """Refuse a mechanics run of a steel that has no mechanics data, before any work: the run would compute no
-    dimensions, distortion or stresses (a fitted steel, ``material = "path/NAME.toml"``, has none until
-    ``NAME.mechanics.toml`` is put beside it). A steel that does not transform is thermal only and passes."""
-    from quenchsim.materials import load_material, transforms
-
-    if not case.mechanics.enabled:
-        return
-    material = load_material(case.material)
-    if "mechanics" in material or not transforms(material):
-        return
-    stem = Path(case.material).with_suffix("") if case.material.endswith(".toml") else Path(case.material)
-    raise InputError("material", case.material, f"has no mechanics data ({stem.name}.mechanics.toml beside it or a "
-                     "[mechanics] table in it): no dimensions or stresses could be computed; add that file "
-                     "(docs/guide/bring_a_steel.md) or run without mechanics: --set mechanics.enabled=false")
 
 
 def summary_table(s: dict, out: Path) -> str:

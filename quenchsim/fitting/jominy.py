@@ -19,12 +19,16 @@ from tqdm import tqdm
 
 from quenchsim.errors import InputError
 from quenchsim.materials import materials_dir, thermal_properties
-from quenchsim.metallurgy import Kinetics, advance, initial_state
+from quenchsim.metallurgy import Kinetics, PhaseModel
 from quenchsim.thermal import AxisymmetricP2, TableHTC, ThermalSolver
+from quenchsim.thermal.steps import StepController
 
 SIGMA_W_m2K4 = 5.670374e-8
 """Stefan-Boltzmann constant (CODATA)."""
 KELVIN = 273.15
+BAR_DT_START_S = 0.01
+BAR_STEPS = StepController(growth=1.3, dt_max_s=5.0, max_dT_K=10.0, hold_over_limit=True)
+"""The bar's steps: from 10 ms, growing 1.3x while a step changes no node by 10 K or more (else held), at most 5 s."""
 
 
 @dataclass(frozen=True)
@@ -66,17 +70,6 @@ def _mesh(bar: JominyBar, n_r: int, n_z: int) -> skfem.MeshTri:
     return skfem.MeshTri.init_tensor(r, z)
 
 
-class _PhaseModel:
-    def __init__(self, kin: Kinetics) -> None:
-        self.kin = kin
-
-    def advance(self, state, T_old_C, T_new_C, dt_s):
-        return advance(state, self.kin, T_old_C, T_new_C, dt_s)
-
-    def fractions(self, state):
-        return state.fractions
-
-
 def cooling_histories(material: dict, kin: Kinetics, distances_mm: np.ndarray, *, end_time_s: float = 900.0,
                       n_r: int = 8, n_z: int = 50, progress: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Times (s) and temperatures (steps, points) on the hardness track at ``distances_mm`` from the quenched end."""
@@ -94,11 +87,11 @@ def cooling_histories(material: dict, kin: Kinetics, distances_mm: np.ndarray, *
     T_air = np.linspace(0.0, kin.T_aust_C + 50.0, 60)
     htc = TableHTC(["temperature", "temperature"], [T_air, bar.end_T_C], [air_h_W_m2K(bar, T_air), bar.end_h_W_m2K],
                    [bar.air_C, bar.water_C], on_end)
-    solver = ThermalSolver(fe, thermal_properties(material), kin.T_aust_C, _PhaseModel(kin),
-                           initial_state(fe.r_qp.shape, kin))
+    phases = PhaseModel(kin)
+    solver = ThermalSolver(fe, thermal_properties(material), kin.T_aust_C, phases, phases.initial_state(fe.r_qp.shape))
     probe = fe.basis.probes(np.vstack([np.full_like(d, R - bar.measure_depth_m), d]))
     times, temps = [0.0], [probe @ solver.T]
-    dt = 0.01
+    dt, steps = BAR_DT_START_S, BAR_STEPS
     with tqdm(total=end_time_s, disable=not progress, desc="Jominy bar", unit="s") as bar_progress:
         while solver.time_s < end_time_s:
             step = solver.try_step(dt, htc)
@@ -106,5 +99,5 @@ def cooling_histories(material: dict, kin: Kinetics, distances_mm: np.ndarray, *
             times.append(solver.time_s)
             temps.append(probe @ solver.T)
             bar_progress.update(dt)
-            dt = min(dt * (1.3 if step.max_dT_K < 10.0 else 1.0), 5.0)
+            dt = steps.next_dt(dt, steps.ratio(step.max_dT_K))
     return np.array(times), np.array(temps)

@@ -37,6 +37,7 @@ from quenchsim.errors import InputError, SolverError
 from quenchsim.geometry.boundary import BoundaryPoints, SectionExtent
 from quenchsim.materials import ThermalProperties, load_data_file, thermal_properties
 from quenchsim.thermal import AxisymmetricP2, NoTransformation, TableHTC, ThermalSolver
+from quenchsim.thermal.steps import StepController
 
 MM = 1e-3
 PROBE_FILE = "iso9950_probe_inconel600"
@@ -113,10 +114,11 @@ def step_schedule(time_s: np.ndarray, centre_C: np.ndarray, *, dt_start_s: float
     grid = np.arange(0.0, t_end + window_s, window_s)
     T_grid = np.interp(grid, time_s, centre_C)
     rate = np.abs(np.diff(T_grid)) / window_s
+    steps = StepController(growth, dt_max_s=dt_max_s)
     ends, t, dt = [], 0.0, dt_start_s
     while t < t_end - 1e-12:
         local = float(rate[min(int(t / window_s), rate.size - 1)])
-        dt = min(dt * growth, dt_max_s, centre_step_K / max(local, 1e-9))
+        dt = steps.ahead(dt, centre_step_K / max(local, 1e-9))
         t = min(t + dt, t_end)
         ends.append(t)
     return np.asarray(ends)

@@ -10,12 +10,16 @@ from __future__ import annotations
 
 import json
 import os
+import time
+import zipfile
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
+
+from quenchsim.errors import InputError
 
 FORMAT_VERSION = 3
 """Written into every checkpoint; a file of another version is not resumed. 2: the stress solver's state since
@@ -82,3 +86,75 @@ def _with_matrices(state: dict[str, Any]) -> dict[str, Any]:
             else:
                 _with_matrices(value)
     return state
+
+
+def read_resumable(path: Path, resolved: dict[str, Any], out_dir: Path) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The checkpoint ``path`` of the run folder ``out_dir`` when it belongs to the case ``resolved`` (the same
+    resolved inputs); otherwise a one-line :class:`InputError` (no checkpoint, another case, another checkpoint
+    format)."""
+    if not path.is_file():
+        raise InputError("--resume", str(out_dir), f"holds no {path.name} to continue from (the run "
+                         "completed, or never reached its first checkpoint); run without --resume")
+    try:
+        header, state = read_checkpoint(path)
+    except (OSError, ValueError, KeyError, zipfile.BadZipFile) as exc:
+        raise InputError("--resume", str(path), f"cannot be read ({exc}); run without --resume") from None
+    if header.get("format") != FORMAT_VERSION:
+        raise InputError("--resume", str(path), f"is of checkpoint format {header.get('format')}, this version "
+                         f"reads {FORMAT_VERSION}; run without --resume")
+    difference = _first_difference(_results_inputs(header["case"]), _results_inputs(resolved))
+    if difference is not None:
+        raise InputError("--resume", str(out_dir), f"its run is of another case ({difference}); resume with the "
+                         "same case file, condition and --set options, or run without --resume")
+    return header, state
+
+
+def _results_inputs(resolved: dict[str, Any]) -> dict[str, Any]:
+    """A resolved case as JSON data without the options that change no result (how often to checkpoint)."""
+    data = json.loads(json.dumps(resolved))
+    data.get("output", {}).pop("checkpoint_minutes", None)
+    return data
+
+
+def _first_difference(there: Any, here: Any, key: str = "") -> str | None:
+    """The first dotted key where two resolved cases differ, as ``key: A there, B here``."""
+    if isinstance(there, dict) and isinstance(here, dict):
+        for k in sorted(set(there) | set(here)):
+            found = _first_difference(there.get(k), here.get(k), f"{key}.{k}" if key else k)
+            if found:
+                return found
+        return None
+    return None if there == here else f"{key}: {there!r} there, {here!r} here"
+
+
+def save_run(run: Any) -> None:
+    """Write the whole state of ``run`` (:class:`quenchsim.pipeline.QuenchRun`) after its last committed step to its
+    checkpoint file (atomically): solvers, phases, stresses, the record so far, position, counts and timings."""
+    state = {"thermal": run.thermal.checkpoint_state(),
+             "phases": run.phase_model.checkpoint_state(run.thermal.phase_state),
+             "run": {**run.record.checkpoint_state(), "mesh_p": run.section.mesh.p}}
+    if run.stress is not None:
+        state.update(run.stress.checkpoint_state())
+    header = {"case": run.case.resolved(), "position": run.position, "counts": run.counts,
+              "frames": run.record.vtk.frames, "wall_time_s": time.perf_counter() - run.wall0,
+              "timings_s": run.timings, "time_s": run.thermal.time_s}
+    write_checkpoint(run.checkpoint_path, state, header)
+
+
+def restore_run(run: Any, header: dict[str, Any], state: dict[str, Any]) -> dict[str, Any]:
+    """Put a checkpoint's state into the freshly built solvers of ``run``; returns what the run's record needs (its
+    arrays, the frames written, the wall time so far)."""
+    mesh_p = state["run"]["mesh_p"]
+    p = run.section.mesh.p
+    if mesh_p.shape != p.shape or not np.allclose(mesh_p, p, rtol=0.0, atol=1e-12):
+        raise InputError("--resume", str(run.checkpoint_path), "the checkpoint's mesh differs from the one "
+                         "built now (another gmsh version?); run without --resume")
+    run.thermal.restore_state(state["thermal"], run.phase_model.restore_state(state["phases"]))
+    if run.stress is not None:
+        run.stress.restore_state(state)
+    run.counts.clear()
+    run.counts.update(header["counts"])
+    run.position = header["position"]
+    run.timings.update(header["timings_s"])
+    return {"run": state["run"], "frames": [tuple(f) for f in header["frames"]],
+            "wall_time_s": float(header["wall_time_s"])}

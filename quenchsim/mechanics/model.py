@@ -341,6 +341,26 @@ def load_mechanics(material: Mapping[str, Any], options: Mapping[str, Any] | Non
     E = _property(elastic, "E_Pa", f"{prefix}.elastic")
     nu = _property(elastic, "nu", f"{prefix}.elastic")
 
+    model_args = dict(name=name, austenitizing_T_C=T_aust, E_Pa=E, nu=nu,
+                      **_free_strain_args(mech, prefix, material, T_aust),
+                      annealed_free_strain=0.0, plasticity=plasticity,
+                      yield_Pa=None, hardening_Pa=None, hardening_memory=0.0, trip=trip,
+                      trip_K_1_Pa=None, trip_law="desalos", newton_rtol=newton_rtol,
+                      max_newton_iterations=max_it)
+    model_args["annealed_free_strain"] = _annealed_free_strain(mech, prefix, model_args)
+    if plasticity:
+        model_args.update(_plastic_args(mech, name, prefix))
+    if trip:
+        model_args.update(_trip_args(mech, name, prefix))
+    model = MechanicsModel(**model_args)
+    check_data(model, prefix)
+    return model
+
+
+def _free_strain_args(mech: Mapping[str, Any], prefix: str, material: Mapping[str, Any], T_aust: float
+                      ) -> dict[str, Any]:
+    """The free-strain fields of :class:`MechanicsModel` from the ``[free_strain]`` table (its form, expansion,
+    reference temperature, and the volume changes or the transformation strain)."""
     fs_prefix = f"{prefix}.free_strain"
     fs = _table(mech, "free_strain", prefix)
     form = fs.get("form")
@@ -357,46 +377,46 @@ def load_mechanics(material: Mapping[str, Any], options: Mapping[str, Any] | Non
         volume_change = {}
         gamma = _property(fs, "transformation_strain", fs_prefix)
         ref_T = T_aust
+    return dict(free_strain_form=form, alpha_1_K=alpha, reference_T_C=ref_T, volume_change=volume_change,
+                transformation_strain=gamma)
 
-    model_args = dict(name=name, austenitizing_T_C=T_aust, E_Pa=E, nu=nu, free_strain_form=form,
-                      alpha_1_K=alpha, reference_T_C=ref_T, volume_change=volume_change,
-                      transformation_strain=gamma, annealed_free_strain=0.0, plasticity=plasticity,
-                      yield_Pa=None, hardening_Pa=None, hardening_memory=0.0, trip=trip,
-                      trip_K_1_Pa=None, trip_law="desalos", newton_rtol=newton_rtol,
-                      max_newton_iterations=max_it)
 
+def _annealed_free_strain(mech: Mapping[str, Any], prefix: str, model_args: dict[str, Any]) -> float:
+    """The free strain of the annealed (room-temperature, pre-quench) state: given, or that of the ``[annealed]``
+    phase at its temperature (specific-volume form)."""
     annealed = _table(mech, "annealed", prefix)
     if "free_strain" in annealed:
-        model_args["annealed_free_strain"] = _number(annealed, "free_strain", f"{prefix}.annealed", -0.1, 0.1)
-    elif form == "specific_volume":
+        return _number(annealed, "free_strain", f"{prefix}.annealed", -0.1, 0.1)
+    if model_args["free_strain_form"] == "specific_volume":
         phase = annealed.get("phase")
         if phase not in PHASES:
             raise InputError(f"{prefix}.annealed.phase", phase, f"must be one of {PHASES} (or give free_strain)")
         T_ann = _number(annealed, "T_C", f"{prefix}.annealed", -273.15, 1500.0)
         provisional = MechanicsModel(**model_args)
-        model_args["annealed_free_strain"] = float(phase_free_strain(provisional, phase, T_ann))
-    else:
-        raise InputError(f"{prefix}.annealed.free_strain", None, "is required for the expansion form")
+        return float(phase_free_strain(provisional, phase, T_ann))
+    raise InputError(f"{prefix}.annealed.free_strain", None, "is required for the expansion form")
 
-    if plasticity:
-        if not isinstance(mech.get("plastic"), Mapping):
-            raise InputError("mechanics.plasticity", True, f"{name} has no [plastic] table; set plasticity = false")
-        plastic = metastable_austenite_scaled(_table(mech, "plastic", prefix), f"{prefix}.plastic")
-        model_args["yield_Pa"] = _property(plastic, "yield_Pa", f"{prefix}.plastic")
-        model_args["hardening_Pa"] = _property(plastic, "hardening_Pa", f"{prefix}.plastic")
-        model_args["hardening_memory"] = _number(plastic, "hardening_memory", f"{prefix}.plastic", 0.0, 1.0)
-    if trip:
-        if not isinstance(mech.get("trip"), Mapping):
-            raise InputError("mechanics.trip", True, f"{name} has no [trip] table; set trip = false")
-        trip_table = _table(mech, "trip", prefix)
-        model_args["trip_K_1_Pa"] = _property(trip_table, "K_1_Pa", f"{prefix}.trip")
-        law = trip_table.get("law", "desalos")
-        if law not in TRIP_LAWS:
-            raise InputError(f"{prefix}.trip.law", law, f"must be one of {TRIP_LAWS}")
-        model_args["trip_law"] = law
-    model = MechanicsModel(**model_args)
-    check_data(model, prefix)
-    return model
+
+def _plastic_args(mech: Mapping[str, Any], name: str, prefix: str) -> dict[str, Any]:
+    """Yield stress, hardening modulus and hardening memory from the ``[plastic]`` table."""
+    if not isinstance(mech.get("plastic"), Mapping):
+        raise InputError("mechanics.plasticity", True, f"{name} has no [plastic] table; set plasticity = false")
+    plastic = metastable_austenite_scaled(_table(mech, "plastic", prefix), f"{prefix}.plastic")
+    return {"yield_Pa": _property(plastic, "yield_Pa", f"{prefix}.plastic"),
+            "hardening_Pa": _property(plastic, "hardening_Pa", f"{prefix}.plastic"),
+            "hardening_memory": _number(plastic, "hardening_memory", f"{prefix}.plastic", 0.0, 1.0)}
+
+
+def _trip_args(mech: Mapping[str, Any], name: str, prefix: str) -> dict[str, Any]:
+    """Greenwood-Johnson coefficients and saturation law from the ``[trip]`` table."""
+    if not isinstance(mech.get("trip"), Mapping):
+        raise InputError("mechanics.trip", True, f"{name} has no [trip] table; set trip = false")
+    trip_table = _table(mech, "trip", prefix)
+    K = _property(trip_table, "K_1_Pa", f"{prefix}.trip")
+    law = trip_table.get("law", "desalos")
+    if law not in TRIP_LAWS:
+        raise InputError(f"{prefix}.trip.law", law, f"must be one of {TRIP_LAWS}")
+    return {"trip_K_1_Pa": K, "trip_law": law}
 
 
 def check_priors(spec: Any, field: str) -> None:

@@ -210,19 +210,8 @@ class MechanicsSolver:
         free1 = free0 + free_strain_increment(model, T0, T1, X0, X1)
 
         bulk, shear = lame_bulk_shear(model.E_Pa(T1, X1), model.nu(T1, X1))
-        yield_now = hardening = None
-        eq_plastic = st.eq_plastic
-        if model.plasticity:
-            transformed = np.clip(X0["austenite"] - X1["austenite"], 0.0, 1.0)
-            eq_plastic = st.eq_plastic * (1.0 - (1.0 - model.hardening_memory) * transformed)
-            hardening = model.hardening_Pa(T1, X1)
-            yield_now = model.yield_Pa(T1, X1) + hardening * eq_plastic
-        d_phi = None
-        if model.trip:
-            d_phi = np.zeros(shape)
-            for phase in PHASES[1:]:
-                d_phi += model.trip_K_1_Pa.for_phase(phase)(T1) * np.maximum(
-                    trip_saturation(model.trip_law, X1[phase]) - trip_saturation(model.trip_law, X0[phase]), 0.0)
+        eq_plastic, yield_now, hardening = self._hardening(T1, X0, X1)
+        d_phi = self._trip_increment(T1, X0, X1)
 
         f_ext = np.zeros(asm.n_dofs) if external_force_N is None else np.asarray(external_force_N, dtype=float)
         base = free1[..., None] * M_VEC + st.plastic + st.trip
@@ -259,15 +248,7 @@ class MechanicsSolver:
             K = asm.stiffness(update)
             K.data[self._zero_pos] = 0.0
             K.data[self._diag_pos] = 1.0
-            if yield_now is None:  # linear step: one accurate solve
-                eta = LINEAR_RTOL
-            elif not update.d_eq_plastic.any():
-                # every point elastic: the residual is linear in u while they stay elastic, so one solve
-                # to a tenth of the Newton tolerance ends the step (a point that yields continues Newton)
-                eta = min(max(0.1 * model.newton_rtol * reference / norm, LINEAR_RTOL), FORCING_MAX)
-            else:  # inexact Newton, Eisenstat & Walker (SIAM J. Sci. Comput. 17 (1996) 16) choice 2
-                eta = FORCING_MAX if iteration == 0 else 0.9 * (norm / history[-2]) ** 2
-                eta = min(max(eta, 0.1 * model.newton_rtol * reference / norm, LINEAR_RTOL), FORCING_MAX)
+            eta = self._forcing(iteration, yield_now is None, update, norm, reference, history)
             du = -self.linear_solver.solve(K, residual, eta)
             best = None
             for cut in range(LINE_SEARCH_CUTS + 1):  # backtrack until the residual decreases
@@ -280,6 +261,46 @@ class MechanicsSolver:
             update, residual, norm, f_abs = best[1]
             history.append(norm)
         return StepInfo(False, model.max_newton_iterations, norm, 0, 0.0, tuple(history))
+
+    def _hardening(self, T1: np.ndarray, X0: Mapping[str, np.ndarray], X1: Mapping[str, np.ndarray]
+                   ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
+        """The equivalent plastic strain carried into the step (the share of it the transformed austenite forgets,
+        ``1 - hardening_memory``, removed), the yield stress and the hardening modulus at the step's end (None, None
+        without plasticity)."""
+        model, st = self.model, self._state
+        if not model.plasticity:
+            return st.eq_plastic, None, None
+        transformed = np.clip(X0["austenite"] - X1["austenite"], 0.0, 1.0)
+        eq_plastic = st.eq_plastic * (1.0 - (1.0 - model.hardening_memory) * transformed)
+        hardening = model.hardening_Pa(T1, X1)
+        return eq_plastic, model.yield_Pa(T1, X1) + hardening * eq_plastic, hardening
+
+    def _trip_increment(self, T1: np.ndarray, X0: Mapping[str, np.ndarray], X1: Mapping[str, np.ndarray]
+                        ) -> np.ndarray | None:
+        """The step's transformation-plasticity increment, sum over the products of K_i(T) times the increase of
+        their saturation function (None without TRIP)."""
+        model = self.model
+        if not model.trip:
+            return None
+        d_phi = np.zeros(self.asm.radius.shape)
+        for phase in PHASES[1:]:
+            d_phi += model.trip_K_1_Pa.for_phase(phase)(T1) * np.maximum(
+                trip_saturation(model.trip_law, X1[phase]) - trip_saturation(model.trip_law, X0[phase]), 0.0)
+        return d_phi
+
+    def _forcing(self, iteration: int, linear: bool, update: PointUpdate, norm: float, reference: float,
+                 history: list[float]) -> float:
+        """The relative tolerance of the Newton iteration's linear solve."""
+        rtol = self.model.newton_rtol
+        if linear:  # linear step: one accurate solve
+            return LINEAR_RTOL
+        if not update.d_eq_plastic.any():
+            # every point elastic: the residual is linear in u while they stay elastic, so one solve
+            # to a tenth of the Newton tolerance ends the step (a point that yields continues Newton)
+            return min(max(0.1 * rtol * reference / norm, LINEAR_RTOL), FORCING_MAX)
+        # inexact Newton, Eisenstat & Walker (SIAM J. Sci. Comput. 17 (1996) 16) choice 2
+        eta = FORCING_MAX if iteration == 0 else 0.9 * (norm / history[-2]) ** 2
+        return min(max(eta, 0.1 * rtol * reference / norm, LINEAR_RTOL), FORCING_MAX)
 
     def _commit(self, u: np.ndarray, free1: np.ndarray, update: PointUpdate, eq_plastic: np.ndarray) -> None:
         st = self._state

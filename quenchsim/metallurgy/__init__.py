@@ -13,12 +13,11 @@ below Ms; see :mod:`quenchsim.metallurgy.transform` for the algorithm and
 :mod:`quenchsim.metallurgy.kinetics` for the material-file schema. CCT curves: :mod:`quenchsim.metallurgy.cct`.
 """
 
+from quenchsim.metallurgy.adapter import PhaseModel
 from quenchsim.metallurgy.hardness import hardness_HV, hrc_to_hv, hv_to_hrc, phase_hardness_HV
 from quenchsim.metallurgy.kinetics import Kinetics, Reaction, load_kinetics
-from quenchsim.metallurgy.transform import (PhaseState, advance, diffusional_fraction_to_come, incubation_share,
-                                            martensite_limit_steps_to_come,
-                                            initial_state)
+from quenchsim.metallurgy.transform import PhaseState, advance, incubation_share, initial_state
 
-__all__ = ["Kinetics", "Reaction", "PhaseState", "load_kinetics", "initial_state", "advance", "incubation_share",
-           "diffusional_fraction_to_come", "martensite_limit_steps_to_come", "hardness_HV",
+__all__ = ["Kinetics", "PhaseModel", "Reaction", "PhaseState", "load_kinetics", "initial_state", "advance", "incubation_share",
+           "hardness_HV",
            "phase_hardness_HV", "hv_to_hrc", "hrc_to_hv"]

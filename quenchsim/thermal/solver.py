@@ -171,19 +171,7 @@ class ThermalSolver:
                 T_lo = T_qp - self.latent_probe_K
                 X_lo = self._fractions(self.phase_model.advance(self.phase_state, self.T_qp, T_lo, dt_s))
                 dQ_dT = np.minimum((latent - self._latent_J_m3(T_lo, X_lo, X0, rho)) / self.latent_probe_K, 0.0)
-            # Newton on the surface flux q = h(T_s)(T_s - T_inf): dq/dT = h + h'(T_s)(T_s - T_inf), negative
-            # where boiling makes q fall with T_s. Exact at first (measured on case A, t = 1-40 s: 3-4
-            # iterations instead of 6-12 with the floor, the iterate 2x closer to the converged step); once a
-            # correction grows instead of shrinking or an iterate leaves the physical range, that iterate is
-            # dropped and the flux derivative kept >= 0.1 h for the rest of the step (a damped, positive
-            # Jacobian). The residual, hence the solution, is the same.
-            Ts = fe.at_facet_qp(T_iter)
-            h = htc(Ts.reshape(-1), t_new).reshape(Ts.shape)
-            dh = (htc(Ts.reshape(-1) + self.htc_probe_K, t_new).reshape(Ts.shape) - h) / self.htc_probe_K
-            dq_dT = h + dh * (Ts - ambient)
-            if damped:
-                dq_dT = np.maximum(dq_dT, 0.1 * h)
-            q = h * (Ts - ambient)
+            Ts, q, dq_dT = self._surface_flux(T_iter, htc, t_new, ambient, damped)
             A = fe.system((rho_cp - dQ_dT) / dt_eff, k, dq_dT)
             # C T_old with C = int rho_cp/dt phi_i phi_j r dA is the load of rho_cp/dt T_old (same quadrature)
             if a2 > 0.0:
@@ -210,8 +198,32 @@ class ThermalSolver:
         else:
             raise SolverError(f"thermal Picard iteration did not converge in {self.max_iterations} iterations "
                               f"(dt = {dt_s:g} s at t = {self.time_s:g} s; last change {change:.3g} K)")
-        # final phase state consistent with the converged temperature; the latent heat reported is
-        # the one of this state (the solve used the previous iterate's, within the Picard tolerance)
+        return self._converged(T_iter, X0, htc, t_new, ambient, dt_s, it)
+
+    def _surface_flux(self, T_iter: np.ndarray, htc: HTC, t_new: float, ambient: np.ndarray, damped: bool
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The surface temperatures of ``T_iter``, the flux q = h(T_s)(T_s - T_inf) out and its derivative for
+        Newton: dq/dT = h + h'(T_s)(T_s - T_inf), negative where boiling makes q fall with T_s.
+
+        Exact at first (measured on case A, t = 1-40 s: 3-4 iterations instead of 6-12 with the floor, the iterate
+        2x closer to the converged step); once a correction grows instead of shrinking or an iterate leaves the
+        physical range, that iterate is dropped and the flux derivative kept >= 0.1 h for the rest of the step
+        (``damped``: a damped, positive Jacobian). The residual, hence the solution, is the same."""
+        Ts = self.fe.at_facet_qp(T_iter)
+        h = htc(Ts.reshape(-1), t_new).reshape(Ts.shape)
+        dh = (htc(Ts.reshape(-1) + self.htc_probe_K, t_new).reshape(Ts.shape) - h) / self.htc_probe_K
+        dq_dT = h + dh * (Ts - ambient)
+        if damped:
+            dq_dT = np.maximum(dq_dT, 0.1 * h)
+        q = h * (Ts - ambient)
+        return Ts, q, dq_dT
+
+    def _converged(self, T_iter: np.ndarray, X0: dict[str, np.ndarray], htc: HTC, t_new: float,
+                   ambient: np.ndarray, dt_s: float, iterations: int) -> ThermalStep:
+        """The step to the converged temperatures ``T_iter``: the final phase state consistent with them; the
+        latent heat reported is the one of this state (the solve used the previous iterate's, within the Picard
+        tolerance)."""
+        fe, props = self.fe, self.props
         T_qp = fe.at_qp(T_iter)
         state = self.phase_model.advance(self.phase_state, self.T_qp, T_qp, dt_s)
         X = self._fractions(state)
@@ -222,7 +234,7 @@ class ThermalSolver:
         heat_out = two_pi * dt_s * fe.integrate_boundary(h * (Ts - ambient))
         latent_J = two_pi * fe.integrate(latent)
         max_dX_by_phase = {p: float(np.max(np.abs(X[p] - X0.get(p, 0.0)))) for p in X}
-        return ThermalStep(T=T_iter, phase_state=state, T_qp=T_qp, dt_s=dt_s, iterations=it,
+        return ThermalStep(T=T_iter, phase_state=state, T_qp=T_qp, dt_s=dt_s, iterations=iterations,
                            max_dT_K=float(np.max(np.abs(T_iter - self.T))), max_dX_by_phase=max_dX_by_phase,
                            heat_out_J=heat_out, latent_J=latent_J)
 

@@ -260,7 +260,7 @@ def bath_cost(case_path: Path, condition: str, calls: int = 2000) -> dict[str, A
     """Time to build the curves on the quadrature points of the case mesh and per interpolation call."""
     from quenchsim.geometry.mesher import mesh_profile
     from quenchsim.geometry.profile import MM
-    from quenchsim.pipeline import cooled_surface_points
+    from quenchsim.quench_setup import cooled_surface_points
     from quenchsim.thermal import AxisymmetricP2
 
     case = load_case(case_path, condition)

@@ -44,7 +44,7 @@ def _section(mesh_mm: float | None = None) -> tuple[Any, Any, Any, Any]:
     """Case A's material, case, hot section and "before" mesh (optionally a coarser mesh for tests)."""
     from quenchsim.case import load_case
     from quenchsim.materials import load_material
-    from quenchsim.pipeline import build_section
+    from quenchsim.quench_setup import build_section
 
     overrides = None if mesh_mm is None else {"mesh.size_mm": mesh_mm, "mesh.surface_size_mm": mesh_mm}
     case = load_case(CASE_A, "1", overrides)
@@ -59,7 +59,7 @@ def temperature_history(section: Any, material: dict[str, Any], htc_W_m2K: dict[
     nodal (P2) temperatures after each step, closed by a uniform step to room temperature."""
     from quenchsim.fem import INTORDER
     from quenchsim.materials import thermal_properties
-    from quenchsim.pipeline import cooled_surface_points
+    from quenchsim.quench_setup import cooled_surface_points
     from quenchsim.thermal import AxisymmetricP2, NoTransformation, ThermalSolver, parse_htc_table
 
     cooled = np.concatenate([f for n, f in section.boundaries.items() if n != "axis"])

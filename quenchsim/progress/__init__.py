@@ -19,6 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 from tqdm import tqdm
 
+from quenchsim.thermal.steps import TARGET
+
 log = logging.getLogger("quenchsim")
 
 BAR_FORMAT = "{desc}: {percentage:3.0f}%|{bar}| [{elapsed}{postfix}]"
@@ -72,11 +74,11 @@ class StepState:
     run for a diffusional reaction (:func:`quenchsim.metallurgy.incubation_share`; 1 once one has started);
     ``diffusional_fraction``: the mean fraction of pearlite + bainite formed so far; ``diffusional_to_come``: asked
     only when the estimate needs it, the mean fraction of pearlite + bainite still to form
-    (:func:`quenchsim.metallurgy.diffusional_fraction_to_come` at each point's cooling rate now; None: not known);
+    (:func:`quenchsim.progress.forecasts.diffusional_fraction_to_come` at each point's cooling rate now; None: not known);
     ``stage_ambient_C``: the current stage's ambient (the bath; NaN: not known); ``martensite_fraction``: the mean
     martensite formed so far; ``martensite_limit_steps``: asked only when the estimate needs it, the steps a limit of
     ``time.mechanics_max_dX`` on the martensite still needs
-    (:func:`quenchsim.metallurgy.martensite_limit_steps_to_come`; None: no martensite to form);
+    (:func:`quenchsim.progress.forecasts.martensite_limit_steps_to_come`; None: no martensite to form);
     ``stress_steps_done``: the stress steps taken so far."""
 
     steps_done: int
@@ -124,7 +126,7 @@ class CoolingProgress:
       is shown meanwhile); then the surface's and the hottest node's drops to the end temperature over the
       temperature limit ``time.max_dT_K`` (the limit holds at the surface first, inside later; steps at 90 % of
       the limit, as the controller aims); the steps of the pearlite/bainite limit, :data:`STEPS_PER_LIMIT_OF_MEAN`
-      times the mean pearlite + bainite still to form (:func:`quenchsim.metallurgy.diffusional_fraction_to_come`,
+      times the mean pearlite + bainite still to form (:func:`quenchsim.progress.forecasts.diffusional_fraction_to_come`,
       each point cooling on at its own rate, asked every :data:`FORECAST_EVERY_STEPS` steps) over 0.9 ``max_dX``,
       counted as far as the incubation of pearlite or bainite has run somewhere (``incubation_share``: the limit
       holds only those, which form once incubated); and the steps the growth factor needs to reach
@@ -193,7 +195,7 @@ class CoolingProgress:
             counted = self._diffusional_steps(now)
         else:
             incubated = now.incubation_share * self._to_come(now) if now.incubation_share > 0.0 else 0.0
-            counted = self._film_steps(now) + STEPS_PER_LIMIT_OF_MEAN * incubated / (0.9 * self.max_dX)
+            counted = self._film_steps(now) + STEPS_PER_LIMIT_OF_MEAN * incubated / (TARGET * self.max_dX)
         counted += self._drop_steps(now, self.max_dT_K) + self._growth_steps(now)
         if math.isnan(counted):
             return math.nan
@@ -234,7 +236,7 @@ class CoolingProgress:
         if math.isnan(film):
             return steps_left
         cooling = max(self._drop_steps(now, self.mechanics_max_dT_K),
-                      now.austenite_fraction / (0.9 * self.mechanics_max_dX))
+                      now.austenite_fraction / (TARGET * self.mechanics_max_dX))
         growth = self._growth_steps(now)
         film *= min(self.max_dT_K / self.mechanics_max_dT_K, 1.0)
         return max(min(steps_left, film + cooling + growth), self._martensite_steps(now) + growth)
@@ -259,7 +261,7 @@ class CoolingProgress:
                 self._martensite = (now.steps_done, *self._martensite[1:])
         _, stress_then, formed_then, steps = self._martensite
         taken = max(now.stress_steps_done - stress_then,
-                    (now.martensite_fraction - formed_then) / (0.9 * self.mechanics_max_dX))
+                    (now.martensite_fraction - formed_then) / (TARGET * self.mechanics_max_dX))
         return max(steps - taken, 0.0) * max(now.austenite_fraction - self._to_come(now), 0.0) / now.austenite_fraction
 
     def _film_steps(self, now: StepState) -> float:
@@ -293,7 +295,7 @@ class CoolingProgress:
         """The steps a temperature limit ``max_dT_K`` needs: it holds at the surface first, then inside, so the
         surface's and the hottest node's drops to the end temperature one after the other, at 90 % of the limit."""
         drop_K = max(now.surface_mean_C - self.T_end_C, 0.0) + max(float(np.max(now.T_nodes_C)) - self.T_end_C, 0.0)
-        return drop_K / (0.9 * max_dT_K)
+        return drop_K / (TARGET * max_dT_K)
 
     def _steps_to_cover(self, time_s: float, dt_s: float) -> float:
         """The fewest steps that cover ``time_s`` of simulated time from a step of ``dt_s``: each step at most
