@@ -31,7 +31,8 @@ from quenchsim.shipped import refuse_shipped_file
 def configure(parser: argparse.ArgumentParser) -> None:
     sub = parser.add_subparsers(dest="action", required=True)
     fit = sub.add_parser("fit", help="fit a steel's transformation kinetics to CCT / TTT / Jominy data")
-    fit.add_argument("data_file", metavar="DATA.toml", type=Path, help="data file (see quenchsim/fitting/diagram_data.py for the format)")
+    fit.add_argument("data_file", metavar="DATA.toml", type=Path, help="CCT / TTT / Jominy data file; a complete example: docs/guide/bring_a_steel.md, the "
+                     "schema: python3 -m pydoc quenchsim.fitting.diagram_data")
     fit.add_argument("--out", type=Path, help="material file to write (default: materials/DATA.toml in the current "
                                               "folder, where a run finds it by name)")
     add_data_option(fit)
