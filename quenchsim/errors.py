@@ -23,7 +23,7 @@ class SolverError(QuenchsimError, RuntimeError):
     """A solver that did not converge; the message says where it stopped."""
 
 
-def require(condition: bool, field: str, value: Any, allowed: str) -> None:
+def require(condition: object, field: str, value: Any, allowed: str) -> None:
     """Raise :class:`InputError` unless ``condition`` holds."""
     if not condition:
         raise InputError(field, value, allowed)

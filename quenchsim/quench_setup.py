@@ -20,7 +20,8 @@ from quenchsim.fem import INTORDER
 from quenchsim.materials import load_material, thermal_properties, transforms
 from quenchsim.results.final_part import FinalPart
 from quenchsim.results.postprocess import NodalProjection
-from quenchsim.thermal import AxisymmetricP2, ImmersionHTC, SurfaceTemperatureHTC, ThermalSolver, parse_htc_table
+from quenchsim.thermal import (AxisymmetricP2, ImmersionHTC, SurfaceTemperatureHTC, TableHTC, ThermalSolver,
+                               parse_htc_table)
 from quenchsim.thermal.steps import REJECT_ABOVE, StepController
 
 
@@ -102,15 +103,20 @@ def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
     if stage == "transfer":
         return SurfaceTemperatureHTC(bath.air_htc(points, case.transfer.temperature_C, case.transfer.emissivity))
     if stage == "quench":
+        # the quench stage carries its htc_table with the "table" model, its bath otherwise (case.parse._quench)
+        oil: TableHTC | SurfaceTemperatureHTC
         if case.quench.htc_model == "table":
+            assert case.quench.htc_table is not None
             oil = parse_htc_table(dict(case.quench.htc_table), points.segment, "quench.htc_table")
         else:
+            assert case.quench.bath is not None
             oil = SurfaceTemperatureHTC(bath.boundary_htc(case.quench.bath, points))
         if case.quench.immersion_speed_mm_s is None:
             return oil
         return ImmersionHTC(oil, stage_htc(case, "transfer", points), points.z_m, points.extent.z_min_m,
                             case.quench.immersion_speed_mm_s * MM, case.transfer.time_s)
     if case.air.htc_model == "table":
+        assert case.air.htc_table is not None   # the "table" model carries its tables (case.parse._air)
         return parse_htc_table(dict(case.air.htc_table), points.segment, "air.htc_table")
     return SurfaceTemperatureHTC(bath.air_htc(points, case.air.temperature_C, case.air.emissivity))
 

@@ -47,7 +47,7 @@ import tomllib
 import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import Any, Callable, Iterator, Mapping
 
 from tqdm import tqdm
 
@@ -112,7 +112,7 @@ def flatten(table: dict[str, Any], prefix: str = "") -> Iterator[tuple[str, Any]
             yield dotted, value
 
 
-def _has_parent(data: dict[str, Any], dotted: str) -> bool:
+def _has_parent(data: Mapping[str, Any], dotted: str) -> bool:
     node: Any = data
     for key in dotted.split(".")[:-1]:
         if not isinstance(node, dict) or key not in node:
@@ -297,6 +297,7 @@ def run_point(raw_case: dict[str, Any], case_path: str | None, condition: str | 
     _write_json(out / CASE_JSON, record)
     summary_path = out / files.SUMMARY_JSON
     summary_path.unlink(missing_ok=True)
+    summary: dict[str, Any] | None
     try:
         case = case_from_dict(raw_case, condition, overrides, path=Path(case_path) if case_path else None)
         RunWriter(out).case(case.resolved())

@@ -148,8 +148,9 @@ def load_targets(path: Path, study: str = "") -> list[Target]:
         elif len(forms) != 1 or given != set(forms[0]):
             raise InputError(where, sorted(given), "give value + tolerance, value + rel_tolerance, or min/max")
         for k in ("tolerance", "rel_tolerance"):
-            if nums[k] is not None and nums[k] < 0:
-                raise InputError(f"{where}.{k}", nums[k], "must be >= 0")
+            bound = nums[k]
+            if bound is not None and bound < 0:
+                raise InputError(f"{where}.{k}", bound, "must be >= 0")
         out.append(Target(study=study, metric=t["metric"], source=t["source"].strip(), unit=t.get("unit", ""),
                           description=t.get("description", ""), status=status, reason=t.get("reason", ""),
                           role=role, **nums))
@@ -277,6 +278,7 @@ class Study:
         """A module-level constant read from study.py's source without importing it (for --list)."""
         import ast
 
+        node: Any   # a statement; an assignment's .value is read
         for node in ast.parse((self.folder / "study.py").read_text()).body:
             target = node.targets[0] if isinstance(node, ast.Assign) else getattr(node, "target", None)
             if isinstance(target, ast.Name) and target.id == name and isinstance(node.value, ast.Constant):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 from quenchsim.bath.quenchant import (STILL_BATH_KIND, OilProperties, ProbeQuenchant, load_oil,
                                       load_probe_quenchant)
@@ -69,7 +69,8 @@ class NozzleRow:
 
     def height_above_bottom_m(self, part_height_m: float) -> float:
         """Nozzle height above the part's bottom face: ``height_m``, or ``height_fraction`` of the part's height."""
-        return self.height_m if self.height_m is not None else float(self.height_fraction) * part_height_m
+        # a row gives height_m or height_fraction (_row)
+        return self.height_m if self.height_m is not None else float(cast(float, self.height_fraction)) * part_height_m
 
 
 @dataclass(frozen=True)

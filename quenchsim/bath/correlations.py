@@ -33,13 +33,14 @@ MAX_DRIFT_M = 1e3
 """Cap of the drift (m): a jet this weak never reaches the wall (its arrival speed is then ~0)."""
 
 
-def jet_centreline_velocity(U0_m_s: np.ndarray, d_m: np.ndarray, x_m: np.ndarray) -> np.ndarray:
+def jet_centreline_velocity(U0_m_s: np.ndarray | float, d_m: np.ndarray | float, x_m: np.ndarray | float
+                            ) -> np.ndarray:
     """Centre-line speed of a submerged round jet at distance x: U_0 min(1, B d/x) (potential core, then 1/x)."""
     x = np.maximum(np.asarray(x_m, dtype=float), 1e-12)
     return np.asarray(U0_m_s, dtype=float) * np.minimum(1.0, JET_DECAY_B * np.asarray(d_m, dtype=float) / x)
 
 
-def jet_half_width(d_m: np.ndarray, x_m: np.ndarray) -> np.ndarray:
+def jet_half_width(d_m: np.ndarray | float, x_m: np.ndarray | float) -> np.ndarray:
     """Half-velocity radius of a round jet: max(d/2, S x)."""
     return np.maximum(0.5 * np.asarray(d_m, dtype=float), JET_SPREAD_S * np.asarray(x_m, dtype=float))
 
@@ -73,15 +74,17 @@ def flat_plate_local_nusselt(Re_x: np.ndarray, Pr: np.ndarray) -> np.ndarray:
     wins at low Re).
     """
     Re = np.maximum(np.asarray(Re_x, dtype=float), 0.0)
-    laminar = 0.5 * ht.Nu_horizontal_plate_laminar_Churchill_Ozoe(Re=Re, Pr=Pr)
-    turbulent = 0.8 * ht.Nu_horizontal_plate_turbulent_Kreith(Re=Re, Pr=Pr)
+    # ht annotates its laws float -> float; they are numpy arithmetic and take arrays
+    laminar = 0.5 * ht.Nu_horizontal_plate_laminar_Churchill_Ozoe(Re=Re, Pr=Pr)  # type: ignore[arg-type]
+    turbulent = 0.8 * ht.Nu_horizontal_plate_turbulent_Kreith(Re=Re, Pr=Pr)  # type: ignore[arg-type]
     return np.maximum(laminar, turbulent)
 
 
 def vertical_plate_natural_nusselt(Pr: np.ndarray, Gr: np.ndarray) -> np.ndarray:
     """Churchill & Chu (1975) vertical plate, all Ra: Nu = (0.825 + 0.387 Ra^(1/6)/(1 + (0.492/Pr)^(9/16))^(8/27))^2
     (ht.Nu_vertical_plate_Churchill)."""
-    return ht.Nu_vertical_plate_Churchill(Pr=Pr, Gr=np.maximum(Gr, 0.0))
+    # ht annotates the law float -> float; it is numpy arithmetic and takes arrays
+    return ht.Nu_vertical_plate_Churchill(Pr=Pr, Gr=np.maximum(Gr, 0.0))  # type: ignore[arg-type, return-value]
 
 
 def horizontal_plate_natural_nusselt(Pr: np.ndarray, Gr: np.ndarray, facing_up: np.ndarray) -> np.ndarray:
@@ -115,7 +118,7 @@ def ivey_morris_factor(rho_l: float, rho_v: float, cp_l: float, subcooling_K: fl
     return 1.0 + C * (rho_l / rho_v) ** 0.75 * cp_l * max(subcooling_K, 0.0) / h_fg_J_kg
 
 
-def rohsenow_heat_flux(dT_excess_K: np.ndarray, rho_l: float, rho_v: float, mu_l: float, k_l: float, cp_l: float,
+def rohsenow_heat_flux(dT_excess_K: np.ndarray | float, rho_l: float, rho_v: float, mu_l: float, k_l: float, cp_l: float,
                        h_fg_J_kg: float, sigma_N_m: float, Csf: float, n: float) -> np.ndarray:
     """Rohsenow (1952) nucleate boiling q = mu h_fg sqrt(g (rho_l-rho_v)/sigma) (c_p dT_e/(C_sf h_fg Pr^n))^3.
 
@@ -141,7 +144,7 @@ def forced_film_htc(U_m_s: np.ndarray, dT_K: np.ndarray, L_m: np.ndarray, k_v: f
     return C * np.sqrt(np.maximum(U_m_s, 0.0) * k_v * rho_v * h_fg_eff_J_kg / (L_m * dT))
 
 
-def radiation_htc(T_surface_C: np.ndarray, T_ambient_C: np.ndarray, emissivity: float) -> np.ndarray:
+def radiation_htc(T_surface_C: np.ndarray, T_ambient_C: np.ndarray | float, emissivity: float) -> np.ndarray:
     """Linearised grey-body radiation h_r = eps sigma (T_s^2 + T_a^2)(T_s + T_a), T in K
     (so that h_r (T_s - T_a) = eps sigma (T_s^4 - T_a^4))."""
     Ts = np.asarray(T_surface_C, dtype=float) + 273.15
@@ -199,7 +202,7 @@ def martin_arn_nusselt(Re: np.ndarray, Pr: np.ndarray, area_ratio: np.ndarray, H
     return np.asarray(Pr, dtype=float) ** MARTIN_PR_EXPONENT * K * G * 0.5 * np.asarray(Re, dtype=float) ** (2.0 / 3.0)
 
 
-def martin_srn_local_shape(r_D: np.ndarray, H_D: np.ndarray) -> np.ndarray:
+def martin_srn_local_shape(r_D: np.ndarray, H_D: np.ndarray | float) -> np.ndarray:
     """Local Nusselt number of a single round jet over Pr^0.42 F_1(Re), as a function of r/D and H/D.
 
     For r/D >= 2.5 it is the local value whose disc mean is Martin's G: Nu_loc = d(r^2 Nu_mean)/dr / (2 r), i.e.

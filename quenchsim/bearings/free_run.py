@@ -247,7 +247,7 @@ MODEL_FAMILIES: tuple[str, ...] = ("polynomial", "power")
 _POWER_RANGE = (0.1, 4.0)
 
 
-def model_pulse_times(theta: np.ndarray, omega0: float, law: Callable[[np.ndarray], np.ndarray],
+def model_pulse_times(theta: np.ndarray, omega0: float, law: Callable[[np.ndarray], np.ndarray | float],
                       omega_min: float, grid: int) -> np.ndarray:
     """Times (s, from the first pulse) at which the model rotor has turned ``theta`` (rad), for
     d omega/dt = -law(omega) starting at omega0.

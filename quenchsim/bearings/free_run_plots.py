@@ -24,6 +24,7 @@ def plot_free_run(pulse_times_s: np.ndarray, result: fr.FreeRunResult, path: pat
     ax1.plot(s.t_s, s.omega_rad_s, ".", ms=2, label="2 pi / period")
     if d.method == "model":
         theta = 2.0 * math.pi * np.arange(pulse_times_s.size)
+        assert d.law is not None   # the model method always returns its fitted law
         t_model = fr.model_pulse_times(theta, d.omega0_rad_s, d.law, 0.5 * float(s.omega_rad_s.min()),
                                        3 * pulse_times_s.size)
         w_model = 2.0 * math.pi / np.diff(t_model)

@@ -173,7 +173,9 @@ def published_points(grease: str = "urea") -> PublishedPoints:
     series one condition is the list that varies, the others are single values."""
     data = _fitted_data(grease)
     b = kin.bearing(data["bearing"])
-    names, cols, assumed = [], {"speed_rpm": [], "temperature_C": [], "load_ratio": [], "L50_h": []}, []
+    names: list[str] = []
+    cols: dict[str, list[float]] = {"speed_rpm": [], "temperature_C": [], "load_ratio": [], "L50_h": []}
+    assumed: list[str] = []
     for name, s in data.items():
         if not name.endswith("_series"):
             continue

@@ -30,13 +30,17 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
+import numpy as np
 import tomli_w
 
 from quenchsim.case import Case
 from quenchsim.errors import InputError
 from quenchsim.materials import load_data_file, load_material
+
+_Unit = TypeVar("_Unit", float, np.ndarray)
+"""A point of the unit interval, or an array of them (:meth:`FreeInput.factor` maps either)."""
 
 PRIOR_KEYS = ("range", "range_factor")
 """The prior keys of a data-file entry (as checked by quenchsim.mechanics.model.check_priors)."""
@@ -89,7 +93,7 @@ class FreeInput:
         keys = [k for k in self.keys if k != "per_phase"]
         return ".".join(keys[-2:])
 
-    def factor(self, u: float) -> float:
+    def factor(self, u: _Unit) -> _Unit:
         """The factor at ``u`` in [0, 1] (log-uniform prior: u = 0 the lower, 1 the upper bound)."""
         lo, hi = self.factor_bounds
         return lo * (hi / lo) ** u

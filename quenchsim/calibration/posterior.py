@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Sequence
+from typing import Any
 from dataclasses import dataclass
 
 import numpy as np
@@ -94,7 +95,7 @@ def identifiability(u: np.ndarray) -> tuple[float, str]:
     return ratio, f"weakly identified: the posterior keeps {100 * ratio:.0f} % of the prior's width"
 
 
-def posterior_table(posterior: Posterior, inputs: Sequence[FreeInput]) -> list[dict[str, object]]:
+def posterior_table(posterior: Posterior, inputs: Sequence[FreeInput]) -> list[dict[str, Any]]:
     """One row per input: factor median and 5-95 %, prior bounds, the data file's (first) value and that value at the
     median, identifiability."""
     rows = []

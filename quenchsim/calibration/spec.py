@@ -179,16 +179,16 @@ def parse_calibration(raw: Mapping[str, Any], base_dir: Path, path: Path | None 
     """Check a calibration table completely (inputs against their data files, cases loaded, measurements)."""
     unknown = set(raw) - TOP_KEYS
     require(not unknown, "calibration file", sorted(unknown), f"allowed keys: {', '.join(sorted(TOP_KEYS))}")
-    paths = raw.get("inputs")
+    paths: Any = raw.get("inputs")   # checked by require: a list of strings
     require(isinstance(paths, list) and paths and all(isinstance(p, str) for p in paths), "inputs", paths,
             "required: a list of free-input paths, e.g. [\"material.SUJ3.mechanics.trip.K_1_Pa\"]")
     require(len(set(paths)) == len(paths), "inputs", paths, "each input may appear once")
     inputs = tuple(free_input(p, f"inputs[{i}]") for i, p in enumerate(paths))
-    raw_cases = raw.get("cases")
+    raw_cases: Any = raw.get("cases")
     require(isinstance(raw_cases, Mapping) and raw_cases, "cases", raw_cases,
             "required: one [cases.LABEL] table per case file")
     cases = {label: _case_spec(label, spec, base_dir) for label, spec in raw_cases.items()}
-    raw_meas = raw.get("measurements")
+    raw_meas: Any = raw.get("measurements")
     require(isinstance(raw_meas, list) and raw_meas, "measurements", raw_meas, "required: one [[measurements]] per value")
     measurements = tuple(_measurement(i, m, cases) for i, m in enumerate(raw_meas))
     raw_pred = raw.get("predictions", [])
@@ -198,7 +198,7 @@ def parse_calibration(raw: Mapping[str, Any], base_dir: Path, path: Path | None 
     labels = [m.label for m in (*measurements, *predictions)]
     require(len(set(labels)) == len(labels), "measurements", labels, "each case/condition/quantity may appear once")
     loaded: dict[tuple[str, str | None], Case] = {}
-    targets = [(f"measurements[{i}]", m) for i, m in enumerate(measurements)]
+    targets: list[tuple[str, Measurement | Prediction]] = [(f"measurements[{i}]", m) for i, m in enumerate(measurements)]
     targets += [(f"predictions[{i}]", p) for i, p in enumerate(predictions)]
     for where, m in targets:
         key = (m.case, m.condition)

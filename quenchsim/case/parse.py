@@ -214,7 +214,7 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
     air = _air(data, segments)
     time = _time(data)
     o = _table(data, "output")
-    frames = o.get("frames")
+    frames: Any = o.get("frames")   # checked by require: an integer
     require(isinstance(frames, int) and not isinstance(frames, bool) and frames >= 2, "output.frames", frames,
             "must be an integer >= 2")
     checkpoint_minutes = _number(o, "checkpoint_minutes", "output.checkpoint_minutes", minimum=0.0, maximum=1440.0)
@@ -302,7 +302,7 @@ def _quench(data: Mapping[str, Any], segments: list[str], process: ProcessSpec) 
 
 def _air(data: Mapping[str, Any], segments: list[str]) -> AirStage:
     a = _table(data, "air")
-    model = a.get("htc_model")
+    model: Any = a.get("htc_model")   # checked by require: one of the names
     require(model in ("natural", "table"), "air.htc_model", model, "must be 'natural' or 'table'")
     temperature = _number(a, "temperature_C", "air.temperature_C", minimum=-50.0, maximum=200.0)
     return AirStage(temperature_C=temperature,

@@ -53,7 +53,7 @@ def segments_figure(section: SectionMesh) -> Any:
     for i, (name, facets) in enumerate(section.boundaries.items()):
         f = section.mesh.facets[:, facets]                       # (2, n) vertex indices of the segment's edges
         edges = np.stack([p[:, f[0]].T, p[:, f[1]].T], axis=1)   # (n, 2 points, 2 coordinates)
-        ax.add_collection(LineCollection(edges, colors=[colours(i)], linewidths=2.5, label=name))
+        ax.add_collection(LineCollection(list(edges), colors=[colours(i)], linewidths=2.5, label=name))
     ax.set_aspect("equal")
     ax.set_xlabel("r (mm)")
     ax.set_ylabel("z (mm)")

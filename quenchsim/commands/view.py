@@ -54,15 +54,15 @@ def run(args: argparse.Namespace) -> int:
     png = args.png or args.run_dir / f"{args.field}{'_3d' if args.three_d else ''}.png"
     png.parent.mkdir(parents=True, exist_ok=True)
     plotter = pyvista.Plotter(off_screen=True, window_size=list(args.size))
-    plotter.set_background("white")
+    plotter.set_background("white")  # type: ignore[arg-type]  # pyvista's decorator stub drops self
     title = f"{args.field}, {frame_path.name}" + (f", displacement x{args.warp:g}" if args.warp else "")
     plotter.add_mesh(mesh, scalars=args.field, cmap="inferno" if "hardness" in args.field else "viridis",
                      scalar_bar_args={"title": args.field, "color": "black"})
     plotter.add_text(title, font_size=10, color="black")
     if args.three_d:
-        plotter.view_isometric()
+        plotter.view_isometric()  # type: ignore[call-arg]  # pyvista's decorator stub drops self
     else:
-        plotter.view_xy()
+        plotter.view_xy()  # type: ignore[call-arg]  # pyvista's decorator stub drops self
     plotter.screenshot(str(png))
     plotter.close()
     print(png)

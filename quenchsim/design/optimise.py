@@ -21,7 +21,7 @@ import logging
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -78,6 +78,7 @@ def _distribution(var: Variable) -> Any:
 
     if var.choices:
         return d.CategoricalDistribution(list(var.choices))
+    assert var.low is not None and var.high is not None   # a variable without choices has a range
     if var.integer:
         return d.IntDistribution(int(var.low), int(var.high), log=var.log)
     return d.FloatDistribution(var.low, var.high, log=var.log, step=var.step)
@@ -146,11 +147,12 @@ def _tell(study: Any, problem: Problem, trial: Any, result: Evaluation) -> None:
         trial.set_user_attr("error", error)
         study.tell(trial, state=optuna.trial.TrialState.FAIL)
         return
-    violations = [c.violation(q[c.quantity]) for c in problem.constraints]
+    given = cast(dict[str, float], q)   # no quantity of an objective or a constraint is missing (checked above)
+    violations = [c.violation(given[c.quantity]) for c in problem.constraints]
     trial.set_user_attr("violations", violations)
     for c, v in zip(problem.constraints, violations):
         trial.set_constraint(c.label(), v)
-    study.tell(trial, [o.score(q[o.quantity]) for o in problem.objectives])
+    study.tell(trial, [o.score(given[o.quantity]) for o in problem.objectives])
 
 
 def run_trials(problem: Problem, evaluate: Evaluator, n_trials: int, storage: str | Path | None = None,
@@ -193,7 +195,8 @@ def records(study: Any, problem: Problem) -> list[TrialRecord]:
 
 def scores(record: TrialRecord, objectives: Sequence[Objective]) -> np.ndarray:
     """The objective scores of a trial, signed so that smaller is better for every objective."""
-    return np.array([(-1.0 if o.goal == "max" else 1.0) * o.score(record.quantities[o.quantity]) for o in objectives])
+    given = cast(dict[str, float], record.quantities)   # an ok trial has every objective's quantity
+    return np.array([(-1.0 if o.goal == "max" else 1.0) * o.score(given[o.quantity]) for o in objectives])
 
 
 def pareto_front(recs: Sequence[TrialRecord], objectives: Sequence[Objective]) -> list[TrialRecord]:

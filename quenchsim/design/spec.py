@@ -53,7 +53,7 @@ import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal, cast
 
 from quenchsim.case import Case, load_case
 from quenchsim.design.quantities import summary_quantities, unknown_quantity_hint
@@ -82,11 +82,15 @@ class Variable:
     def numeric(self) -> bool:
         return not self.choices
 
+    def bounds(self) -> tuple[float, float]:
+        """(low, high) of a numeric variable (both given whenever there are no choices)."""
+        return float(cast(float, self.low)), float(cast(float, self.high))
+
     def from_unit(self, u: float) -> Any:
         """The value at ``u`` in [0, 1] of the variable's range (log-scaled, rounded to integers or steps)."""
         if self.choices:
             return self.choices[min(int(u * len(self.choices)), len(self.choices) - 1)]
-        lo, hi = float(self.low), float(self.high)
+        lo, hi = self.bounds()
         x = math.exp(math.log(lo) + u * (math.log(hi) - math.log(lo))) if self.log else lo + u * (hi - lo)
         if self.integer:
             return int(min(max(round(x), lo), hi))
@@ -98,7 +102,7 @@ class Variable:
         """Where ``x`` sits in the range, 0 at low and 1 at high (log-scaled where the variable is)."""
         if self.choices:
             return self.choices.index(x) / max(len(self.choices) - 1, 1)
-        lo, hi = float(self.low), float(self.high)
+        lo, hi = self.bounds()
         if self.log:
             return (math.log(x) - math.log(lo)) / (math.log(hi) - math.log(lo))
         return (float(x) - lo) / (hi - lo)
@@ -112,10 +116,11 @@ class Objective:
 
     def score(self, value: float) -> float:
         """What the optimiser minimises or maximises: the value, or |value - target|."""
-        return abs(value - self.target) if self.goal == "target" else value
+        # a "target" objective has its target
+        return abs(value - cast(float, self.target)) if self.goal == "target" else value
 
     @property
-    def direction(self) -> str:
+    def direction(self) -> Literal["minimize", "maximize"]:
         return "maximize" if self.goal == "max" else "minimize"
 
     def label(self) -> str:
@@ -275,6 +280,7 @@ def _constraints(raw: Any) -> list[Constraint]:
     for name, text in items:
         match = CONSTRAINT.match(text) if isinstance(text, str) else None
         require(match is not None, name, text, 'must read "QUANTITY >= NUMBER" or "QUANTITY <= NUMBER"')
+        assert match is not None   # require raised otherwise
         try:
             bound = float(match.group(3))
         except ValueError:
@@ -325,7 +331,8 @@ def parse_study(raw: dict[str, Any], base_dir: Path, name: str = "study") -> Stu
     objectives = [_objective(k, v) for k, v in _flatten(raw.get("objectives", {}), {"target"}).items()]
     require(len(objectives) > 0, "objectives", None, "a study needs at least one objective")
     constraints = _constraints(raw.get("constraints", []))
-    for item in [*objectives, *constraints]:
+    goals: list[Objective | Constraint] = [*objectives, *constraints]
+    for item in goals:
         section = "objectives" if isinstance(item, Objective) else "constraints"
         require(item.quantity in known, f"{section}.{item.quantity}", item.label(), unknown_quantity_hint(item.quantity, known))
     _check_satisfiable(constraints, known)
@@ -337,7 +344,7 @@ def parse_study(raw: dict[str, Any], base_dir: Path, name: str = "study") -> Stu
     fidelity = Fidelity(mesh=_number(f.get("mesh", 1.0), "fidelity.mesh", positive=True),
                         step=_number(f.get("step", 1.0), "fidelity.step", positive=True),
                         tolerance={k: _number(v, f"fidelity.tolerance.{k}", positive=True) for k, v in tolerance.items()})
-    quantities = list(dict.fromkeys(i.quantity for i in [*objectives, *constraints]))
+    quantities = list(dict.fromkeys(i.quantity for i in goals))
     if fidelity.cheap:
         missing = [q for q in quantities if q not in fidelity.tolerance]
         require(not missing, "fidelity.tolerance", missing,

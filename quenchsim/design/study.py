@@ -82,7 +82,7 @@ def _evaluations(spec: StudySpec, points: list[dict[str, Any]], runs_dir: Path, 
     for req in reqs:
         name = req.folder_name()
         summary = done.summaries.get(name)
-        info = {"run": f"{RUNS}/{name}"}
+        info: dict[str, Any] = {"run": f"{RUNS}/{name}"}
         if summary is None:
             out.append(Evaluation(None, error=done.failed.get(name, "not run"), info=info))
         elif summary.get("end_state", {}).get("at_room_temperature") is False:
@@ -153,7 +153,8 @@ def run_study(spec: StudySpec, out: str | Path, workers: int = 2, scheduler: str
     n_confirm = 1 + spec.confirm.extra
     bar = tqdm(total=spec.trials + n_confirm, initial=min(evaluated(study), spec.trials),
                desc=f"optimise {spec.name}", unit="run", disable=not progress)
-    client = cluster = None
+    client: Any = None   # dask's Client and cluster, set together
+    cluster: Any = None
     if workers > 0 and scheduler is None:   # one cluster for the whole study
         client, cluster = _client(None, workers)
         scheduler = cluster.scheduler_address

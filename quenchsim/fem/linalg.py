@@ -36,6 +36,10 @@ class SparseCholesky:
     (~1/3 of a refactorisation at 33,710 DOFs), so a caller whose matrices are positive definite by construction
     may skip it."""
 
+    _upper: sp.csc_matrix          # the upper triangle of A (set by refactorize)
+    _upper_of_A: np.ndarray        # where each entry of _upper sits in A.data
+    _solver: qdldl.Solver
+
     def __init__(self, A: sp.spmatrix, check_definite: bool = True) -> None:
         self.check_definite = check_definite
         self._pattern: tuple[np.ndarray, np.ndarray] | None = None

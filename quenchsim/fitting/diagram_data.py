@@ -422,7 +422,8 @@ def _fit_spec(r: _Reader, reaction: str, table: Any) -> ReactionFitSpec:
     for key in ("n", "n_per_K") if nodes else N_NODES:
         if key in table:
             raise r.error(f"{where}.{key}", table[key], "give n (and n_per_K) or n_nodes_T_C with n_nodes, not both")
-    values, sources = {}, {}
+    values: dict[str, Any] = {}   # numbers; the n(T) nodes as tuples (ReactionFitSpec.values)
+    sources: dict[str, str] = {}
     for key in ("T_upper_C", "T_ref_C", *C_CURVE_PARAMETERS[:3], *exponent):
         spec = table.get(key)
         sources[key] = spec.get("source", "") if isinstance(spec, Mapping) else ""

@@ -28,7 +28,7 @@ import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import tomli_w
@@ -86,7 +86,7 @@ def c_curve_reaction(spec: ReactionFitSpec, values: Mapping[str, float | tuple[f
     """The ``c_curve`` Reaction of a fit spec with the given parameter values (n(T) nodes as arrays)."""
     params = {"T_ref_C": spec.T_ref_C, "n_per_K": 0.0,
               **{k: np.array(v) if isinstance(v, tuple) else float(v) for k, v in values.items() if k != "T_upper_C"}}
-    return Reaction(model="c_curve", source=source, T_upper_C=float(values["T_upper_C"]), params=params)
+    return Reaction(model="c_curve", source=source, T_upper_C=float(cast(float, values["T_upper_C"])), params=params)
 
 
 @dataclass(frozen=True)
@@ -114,7 +114,7 @@ def run_curves(kin: Kinetics, curves: Sequence[CoolingCurve], growth: float = CC
         for p in hist:
             hist[p].append(state.fractions[p])
     start, finish = {}, {}
-    cols = np.arange(len(curves))
+    cols = range(len(curves))
     for p in kin.reactions:
         X = np.array(hist[p])
         final = X[-1]
@@ -226,8 +226,12 @@ def base_kinetics(data: DiagramData) -> Kinetics:
 
 def _free_entries(data: DiagramData) -> list[tuple[str, str, int | None]]:
     """(reaction, parameter, node index or None) of every free number, in the order of the fit vector."""
-    return [(r, p, k) for r, spec in data.fit.items() for p in spec.free
-            for k in (range(len(spec.values[p])) if isinstance(spec.values[p], tuple) else (None,))]
+    return [(r, p, k) for r, spec in data.fit.items() for p in spec.free for k in _node_indices(spec.values[p])]
+
+
+def _node_indices(value: float | tuple[float, ...]) -> Sequence[int | None]:
+    """The node index of every number of one parameter: 0, 1, ... for n(T) nodes, None for a single number."""
+    return range(len(value)) if isinstance(value, tuple) else (None,)
 
 
 def _label(r: str, p: str, k: int | None) -> str:
@@ -240,11 +244,13 @@ def _unpack(data: DiagramData, x: np.ndarray) -> dict[str, dict[str, float | tup
         if k is None:
             values[r][name] = float(np.exp(xi)) if name == "tau_ref_s" else float(xi)
         else:
-            values[r][name] = (*values[r][name][:k], float(xi), *values[r][name][k + 1:])
+            nodes = cast(tuple[float, ...], values[r][name])   # k is a node index: the value is a tuple of nodes
+            values[r][name] = (*nodes[:k], float(xi), *nodes[k + 1:])
     return values
 
 
-def _kinetics_with(base: Kinetics, data: DiagramData, values: Mapping[str, Mapping[str, float]]) -> Kinetics:
+def _kinetics_with(base: Kinetics, data: DiagramData,
+                   values: Mapping[str, Mapping[str, float | tuple[float, ...]]]) -> Kinetics:
     reactions = dict(base.reactions)
     for r, spec in data.fit.items():
         reactions[r] = c_curve_reaction(spec, values[r])
@@ -269,7 +275,8 @@ def fit_kinetics(data: DiagramData, jominy_histories: tuple[np.ndarray, np.ndarr
     entries = _free_entries(data)
     names = [_label(*e) for e in entries]
     x0 = np.array([np.log(data.fit[r].values[p]) if p == "tau_ref_s" else
-                   data.fit[r].values[p] if k is None else data.fit[r].values[p][k] for r, p, k in entries])
+                   data.fit[r].values[p] if k is None else cast(tuple[float, ...], data.fit[r].values[p])[k]
+                   for r, p, k in entries])
     lo = np.array([data.fit[r].T_ref_C + 1.0 if p == "T_upper_C" else _BOUNDS[p][0] for r, p, _ in entries])
     hi = np.array([_BOUNDS[p][1] for _, p, _ in entries])
 
@@ -282,7 +289,7 @@ def fit_kinetics(data: DiagramData, jominy_histories: tuple[np.ndarray, np.ndarr
         raise FitError(f"{data.path.name}: {len(names)} free parameters ({', '.join(names)}) "
                        f"but only {n_res} data residuals: the data cannot constrain them; fix some in [fit]")
     x = x0
-    std = {r: {} for r in data.fit}
+    std: dict[str, dict[str, Any]] = {r: {} for r in data.fit}   # a float, or a tuple for n(T) nodes
     if names:
         sol = least_squares(vector, np.clip(x0, lo, hi), bounds=(lo, hi), x_scale="jac", diff_step=1e-4,
                             xtol=1e-10, ftol=1e-10, gtol=1e-10)
@@ -319,7 +326,7 @@ def _check_identifiable(data: DiagramData, names: list[str], jac: np.ndarray) ->
 # -- the material file ------------------------------------------------------------------------------
 
 def _fmt(x: float | tuple[float, ...]) -> float | list[float]:
-    return [_fmt(v) for v in x] if isinstance(x, tuple) else float(f"{x:.6g}")
+    return [float(f"{v:.6g}") for v in x] if isinstance(x, tuple) else float(f"{x:.6g}")
 
 
 def fitted_block(result: FitResult, data_file: str) -> str:
@@ -336,14 +343,14 @@ def fitted_block(result: FitResult, data_file: str) -> str:
         for p, v in values.items():
             if p in spec.free:
                 err = result.std_errors[r].get(p, float("nan"))
-                err = ", ".join(f"{e:.2g}" for e in err) if isinstance(err, tuple) else f"{err:.2g}"
-                what = f"relative std. error {err}" if p == "tau_ref_s" else f"std. error {err}"
+                err_text = ", ".join(f"{e:.2g}" for e in err) if isinstance(err, tuple) else f"{err:.2g}"
+                what = f"relative std. error {err_text}" if p == "tau_ref_s" else f"std. error {err_text}"
                 source = f"fitted to {data_file} ({what})"
             else:
                 source = spec.sources[p]
             if p == "tau_ref_s" and spec.tau_factor != 1.0:
                 source = (f"{_fmt(v)} s ({source}) x calibration factor {spec.tau_factor:g}: {spec.tau_factor_source}")
-                v = v * spec.tau_factor
+                v = cast(float, v) * spec.tau_factor   # tau_ref_s is a single number
             lines.append(f"{p} = " + _inline({"value": _fmt(v), "source": source}))
     sources = list(dict.fromkeys(x.source for x in result.residuals))
     lines += ["", "[kinetics.fit]", "data_file = " + _value(data_file), f"T_aust_C = {_value(data.T_aust_C)}",

@@ -105,7 +105,7 @@ def plot_ttt(kin: Kinetics, data: DiagramData | None, path: Path) -> Path:
     return path
 
 
-def plot_jominy(distance_mm: np.ndarray, model_HRC: np.ndarray, points: Sequence[JominyPoint], path: Path,
+def plot_jominy(distance_mm: np.ndarray | Sequence[float], model_HRC: np.ndarray, points: Sequence[JominyPoint], path: Path,
                 title: str, limits: Sequence[tuple[float, float, str]] = ()) -> Path:
     """Model Jominy curve (HRC vs distance from the quenched end) with data points and optional (distance, HRC, label)
     limits (e.g. a standard's minimum)."""
@@ -139,7 +139,7 @@ def plot_probe_fit(fit: ProbeFit, path: Path, title: str) -> Path:
     axes[1].plot(Tc, rate, "-", label="re-simulated")
     if fit.data is not None and fit.data.kind == TIME_TEMPERATURE:
         axes[0].plot(fit.data.time_s, fit.data.temperature_C, ".", ms=3, label="probe curve (data)")
-        axes[1].plot(fit.data.temperature_C, -np.gradient(fit.data.temperature_C, fit.data.time_s), ".", ms=3,
+        axes[1].plot(fit.data.temperature_C, -np.gradient(fit.data.temperature_C, fit.data.times_s), ".", ms=3,
                      label="probe curve (data)")
     elif fit.data is not None:
         axes[1].plot(fit.data.temperature_C, fit.data.rate_C_s, ".", ms=3, label="probe curve (data)")

@@ -9,6 +9,7 @@ wrong column (time in ms or in minutes, a water curve given as an oil), not an u
 from __future__ import annotations
 
 import numpy as np
+import numpy.typing as npt
 
 from quenchsim.errors import InputError
 
@@ -39,7 +40,7 @@ RATE_WINDOW_S = 0.5
 between samples 0.01 s apart would read as 200 C/s; over 0.5 s as 4 C/s; the conduction-limit peak is ~1 s wide)."""
 
 
-def check_probe_plausible(time_s: np.ndarray | None, temperature_C: np.ndarray, rate_C_s: np.ndarray | None,
+def check_probe_plausible(time_s: npt.ArrayLike | None, temperature_C: npt.ArrayLike, rate_C_s: npt.ArrayLike | None,
                           where: str = "curve") -> None:
     """Refuse a probe curve the ISO 9950 probe cannot have produced in a liquid: a centre rate above
     :data:`MAX_CENTRE_RATE_C_S` or, for a time curve, a time to 300 C above :data:`MAX_TIME_TO_300_C_S`."""

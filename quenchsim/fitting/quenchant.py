@@ -29,7 +29,7 @@ import csv
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -62,6 +62,16 @@ class ProbeData:
     temperature_C: np.ndarray
     time_s: np.ndarray | None = None
     rate_C_s: np.ndarray | None = None
+
+    @property
+    def times_s(self) -> np.ndarray:
+        """``time_s`` of a time/temperature curve (always set for that kind)."""
+        return cast(np.ndarray, self.time_s)
+
+    @property
+    def rates_C_s(self) -> np.ndarray:
+        """``rate_C_s`` of a rate/temperature curve (always set for that kind)."""
+        return cast(np.ndarray, self.rate_C_s)
 
 
 def _column(rows: list[dict[str, str]], key: str, path: str) -> np.ndarray:
@@ -98,7 +108,7 @@ def check_probe_data(data: ProbeData, where: str = "curve") -> ProbeData:
     require(T.size >= 5, f"{where}: temperature_C", T.size, "needs at least 5 points")
     require(bool(np.all(np.isfinite(T))), f"{where}: temperature_C", "non-finite", "values must be finite")
     if data.kind == TIME_TEMPERATURE:
-        t = data.time_s
+        t = data.times_s
         bad = np.flatnonzero(np.diff(t) <= 0)
         if bad.size:
             i = int(bad[0]) + 1
@@ -111,7 +121,7 @@ def check_probe_data(data: ProbeData, where: str = "curve") -> ProbeData:
                 float(T[i]), f"the probe heats up: {rise[i]:.1f} K above the lowest earlier value "
                              f"{float(T[i] - rise[i]):g} C (a quenched probe only cools; tolerance {HEATING_TOLERANCE_K:g} K)")
     else:
-        rate = data.rate_C_s
+        rate = data.rates_C_s
         bad = np.flatnonzero(np.diff(T) >= 0)
         if bad.size:
             i = int(bad[0]) + 1
@@ -253,12 +263,12 @@ class _Problem:
         t = np.concatenate([[0.0], self.step_ends])
         Tc = np.concatenate([[self.model.start_C], centre])
         if self.data.kind == TIME_TEMPERATURE:
-            misfit = np.interp(self.data.time_s, t, Tc) - self.data.temperature_C
+            misfit = np.interp(self.data.times_s, t, Tc) - self.data.temperature_C
         else:
             rate = -np.gradient(Tc, t)
             # the centre curve falls monotonically once it moves; interpolate the rate against -T
             down = np.maximum.accumulate(-Tc + 1e-9 * np.arange(Tc.size))
-            misfit = np.interp(-self.data.temperature_C, down, rate) - self.data.rate_C_s
+            misfit = np.interp(-self.data.temperature_C, down, rate) - self.data.rates_C_s
         return misfit / (self.sigma * np.sqrt(misfit.size))
 
     def residual(self, p: np.ndarray) -> np.ndarray:
@@ -269,6 +279,7 @@ class _Problem:
     def jacobian(self, p: np.ndarray, delta: float = 0.03) -> np.ndarray:
         if self._cache is None or not np.array_equal(self._cache[0], p):
             self.residual(p)
+        assert self._cache is not None   # residual() has just filled it
         _, checkpoints, centre, surface_min = self._cache
         base = self.data_residual(centre)
         J = np.zeros((base.size + self.D2.shape[0], p.size))
@@ -328,6 +339,7 @@ def fit_probe_curve(data: ProbeData, *, bath_C: float | None = None, model: Prob
         # linearised uncertainty of ln h (Gauss-Newton covariance; data residuals are scaled by sigma sqrt(N))
         J = problem.jacobian(p)
         steps_run += problem.steps_run / problem.step_ends.size
+    assert problem._cache is not None   # jacobian() above ran the residual
     _, _, centre, surface_min = problem._cache
     ends = problem.step_ends
     curve = ProbeCurve(np.concatenate([[0.0], ends]), np.concatenate([[model.start_C], centre]), np.array([]))
@@ -335,9 +347,9 @@ def fit_probe_curve(data: ProbeData, *, bath_C: float | None = None, model: Prob
     cov = np.linalg.pinv(J.T @ J) / data.temperature_C.size
     h_std = np.exp(p) * np.sqrt(np.clip(np.diag(cov), 0.0, None))
     if data.kind == TIME_TEMPERATURE:
-        measured = cooling_figures(data.time_s, data.temperature_C)
+        measured = cooling_figures(data.times_s, data.temperature_C)
     else:
-        measured = rate_figures(data.temperature_C, data.rate_C_s)
+        measured = rate_figures(data.temperature_C, data.rates_C_s)
     return ProbeFit(T_C=nodes, h_W_m2K=np.exp(p), data=data, bath_C=model.bath_C, curve=curve,
                     residual_rms=float(np.sqrt(np.mean(misfit**2))), residual_max=float(np.max(np.abs(misfit))),
                     residual_unit=unit, h_std_W_m2K=h_std,
@@ -349,8 +361,8 @@ def fit_probe_curve(data: ProbeData, *, bath_C: float | None = None, model: Prob
 def _time_curve(data: ProbeData, start_C: float) -> tuple[np.ndarray, np.ndarray]:
     """The data as a time/temperature curve (rate curves integrated), starting at t = 0."""
     if data.kind == TIME_TEMPERATURE:
-        return data.time_s, data.temperature_C
-    return time_of_rate_curve(data.temperature_C, data.rate_C_s, start_C), data.temperature_C
+        return data.times_s, data.temperature_C
+    return time_of_rate_curve(data.temperature_C, data.rates_C_s, start_C), data.temperature_C
 
 
 # --- the data-sheet shortcut ------------------------------------------------------------------------------
@@ -469,7 +481,7 @@ def default_shape(name: str = SHORTCUT_SHAPE_OIL) -> CurveShape:
     values = {}
     for key in SHAPE_PARAMETERS:
         spec = shape.get(key)
-        value = spec.get("value") if isinstance(spec, dict) else spec
+        value: Any = spec.get("value") if isinstance(spec, dict) else spec   # checked by require: a number
         require(isinstance(value, (int, float)) and value > 0, f"{name}.shape.{key}", value, "must be a positive number")
         values[key] = float(value)
     return CurveShape(**values)
@@ -505,14 +517,14 @@ def quenchant_document(fit: ProbeFit, *, name: str, source: str, tag: str, agita
     if fit.data is None:
         curve["kind"] = "figures"
     elif fit.data.kind == TIME_TEMPERATURE:
-        t = fit.data.time_s
+        t = fit.data.times_s
         curve.update(kind=TIME_TEMPERATURE, time_s=t.tolist(), temperature_C=fit.data.temperature_C.tolist(),
                      resimulated_C=np.round(np.interp(t, fit.curve.time_s, fit.curve.centre_C), 2).tolist())
     else:
         sim_rate = -np.gradient(fit.curve.centre_C, fit.curve.time_s)
         down = np.maximum.accumulate(-fit.curve.centre_C + 1e-9 * np.arange(fit.curve.centre_C.size))
         curve.update(kind=RATE_TEMPERATURE, temperature_C=fit.data.temperature_C.tolist(),
-                     rate_C_s=fit.data.rate_C_s.tolist(),
+                     rate_C_s=fit.data.rates_C_s.tolist(),
                      resimulated_rate_C_s=np.round(np.interp(-fit.data.temperature_C, down, sim_rate), 3).tolist())
     doc["curve"] = curve
     if fit.shape is not None:

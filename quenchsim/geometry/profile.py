@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -36,11 +36,12 @@ class Segment:
 
     def sweep(self) -> float:
         """Signed arc angle (rad, counter-clockwise positive), the short way round."""
-        a0 = math.atan2(self.start[1] - self.center[1], self.start[0] - self.center[0])
-        a1 = math.atan2(self.end[1] - self.center[1], self.end[0] - self.center[0])
+        c = cast(tuple[float, float], self.center)   # only arcs have a sweep (callers check center)
+        a0 = math.atan2(self.start[1] - c[1], self.start[0] - c[0])
+        a1 = math.atan2(self.end[1] - c[1], self.end[0] - c[0])
         return (a1 - a0 + math.pi) % (2 * math.pi) - math.pi
 
-    def distance(self, r: np.ndarray, z: np.ndarray) -> np.ndarray:
+    def distance(self, r: float | np.ndarray, z: float | np.ndarray) -> np.ndarray:
         """Shortest distance from points (r, z) to this segment."""
         r, z = np.asarray(r, dtype=float), np.asarray(z, dtype=float)
         if self.center is None:
@@ -78,9 +79,10 @@ class Profile:
 
     def scaled(self, factor: float) -> "Profile":
         """The profile scaled about the origin (r = 0, z = 0) by ``factor`` (free isotropic strain)."""
-        def sc(xy: tuple[float, float] | None) -> tuple[float, float] | None:
-            return None if xy is None else (xy[0] * factor, xy[1] * factor)
-        return Profile(tuple(Segment(s.name, sc(s.start), sc(s.end), sc(s.center)) for s in self.segments))
+        def sc(xy: tuple[float, float]) -> tuple[float, float]:
+            return (xy[0] * factor, xy[1] * factor)
+        return Profile(tuple(Segment(s.name, sc(s.start), sc(s.end), None if s.center is None else sc(s.center))
+                             for s in self.segments))
 
     def polygon(self, per_segment: int = 32) -> np.ndarray:
         return np.vstack([s.points(per_segment)[:-1] for s in self.segments])
@@ -208,9 +210,9 @@ def spherical_outer_ring(raceway_diameter_m: float, outer_diameter_m: float, wid
 
 def general_profile(spec: dict[str, Any], field: str = "geometry") -> Profile:
     """Profile from ``start_mm = [r, z]`` and ``[[segments]]`` with ``to_mm``, ``name``, optional ``center_mm``."""
-    start = spec.get("start_mm")
+    start: Any = spec.get("start_mm")   # checked by require below
     require(isinstance(start, list) and len(start) == 2, f"{field}.start_mm", start, "must be [r, z] in mm")
-    items = spec.get("segments")
+    items: Any = spec.get("segments")
     require(isinstance(items, list) and len(items) >= 3, f"{field}.segments", items, "needs >= 3 segments")
     segs, here = [], (start[0] * MM, start[1] * MM)
     for i, item in enumerate(items):

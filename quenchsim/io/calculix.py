@@ -18,7 +18,7 @@ deck keywords) and 10 (the .frd result format).
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -86,7 +86,7 @@ def temperature_grid(model: Any, phase: str, T_min_C: float, T_max_C: float, ste
     return np.unique(np.round(np.concatenate(knots), 9))
 
 
-def _rows(values: Sequence[Sequence[float]]) -> str:
+def _rows(values: Iterable[Sequence[float]]) -> str:
     return "\n".join(", ".join(f"{v:.10g}" for v in row) for row in values)
 
 

@@ -33,7 +33,7 @@ _CSR = "__csr__"
 def write_checkpoint(path: str | Path, state: Mapping[str, Any], header: Mapping[str, Any]) -> Path:
     """Write ``state`` (nested mapping of arrays) and ``header`` (JSON-serialisable) to ``path`` atomically."""
     path = Path(path)
-    arrays = _flatten(state, "")
+    arrays: dict[str, Any] = _flatten(state, "")   # Any: numpy's savez stub types **kwds against allow_pickle
     arrays[_HEADER] = np.array(json.dumps({"format": FORMAT_VERSION, **header}))
     tmp = path.with_name(path.name + ".tmp")
     with tmp.open("wb") as fh:

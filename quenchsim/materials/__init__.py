@@ -75,13 +75,13 @@ def data_folders() -> list[Path]:
 def use_data_folders(folders: Iterable[str | Path]) -> None:
     """Put ``folders`` (``--data DIR``) in front of the search path of this process and the processes it starts. A
     folder that does not exist is an :class:`InputError`."""
-    folders = [Path(f).expanduser().resolve() for f in folders]
-    for folder in folders:
+    paths = [Path(f).expanduser().resolve() for f in folders]
+    for folder in paths:
         if not folder.is_dir():
             raise InputError("--data", str(folder), "is not a folder (a data folder laid out like materials/: "
                                                     "NAME.toml, quenchants/NAME.toml)")
     old = [p for p in os.environ.get(DATA_ENV, "").split(os.pathsep) if p]
-    os.environ[DATA_ENV] = os.pathsep.join([*map(str, folders), *old])
+    os.environ[DATA_ENV] = os.pathsep.join([*map(str, paths), *old])
 
 
 @contextlib.contextmanager

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -45,10 +45,11 @@ class Property:
         T = np.asarray(T_C, dtype=float)
         if self.kind == "constant":
             return np.full_like(T, self.constant)
+        # a "table" property always carries T_C and values, a "poly" one its coefficients (see parse_property)
         if self.kind == "table":
-            return np.interp(T, self.T_C, self.values)
+            return np.interp(T, cast(np.ndarray, self.T_C), cast(np.ndarray, self.values))
         if self.kind == "poly":
-            return np.polynomial.polynomial.polyval(T, self.coefficients)
+            return np.polynomial.polynomial.polyval(T, cast(np.ndarray, self.coefficients))
         # per-phase mixture
         if fractions is None:
             raise ValueError("a per-phase property needs the phase fractions")

@@ -27,6 +27,7 @@ with c = beta = 1/(1 + a) in the elastic(-TRIP) range and c = H/(3 mu + (1 + a) 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
@@ -99,7 +100,7 @@ def return_map(elastic_trial_strain: np.ndarray, bulk_Pa: np.ndarray, shear_Pa: 
     if yield_Pa is not None:
         plastic = q_trial * beta > yield_Pa * (1.0 + YIELD_TOLERANCE)
         if plastic.any():
-            H = hardening_Pa
+            H = cast(np.ndarray, hardening_Pa)   # a plastic model gives yield_Pa and hardening_Pa together
             denom = 3.0 * shear_Pa + (1.0 + a) * H
             dp = np.where(plastic, (q_trial - (1.0 + a) * yield_Pa) / denom, 0.0)
             q = yield_Pa + H * dp

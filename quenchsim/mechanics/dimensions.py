@@ -11,6 +11,8 @@ middle of the wall at that height cuts the boundary.  The section's area is that
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from skfem import Basis, ElementTriP2, ElementVector, MeshTri
 
@@ -85,7 +87,7 @@ def section_outline(mesh: MeshTri, displacement_m: np.ndarray | None = None, mag
     n = len(seg) // 2
     facets = mesh.boundary_facets()
     start, end = mesh.facets[0, facets], mesh.facets[1, facets]
-    nxt = {}
+    nxt: dict[Any, list[tuple[int, bool]]] = {}   # vertex -> (edge, the vertex is the edge's end)
     for k in range(n):  # chain the boundary edges (a boundary vertex has exactly two boundary edges)
         nxt.setdefault(start[k], []).append((k, False))
         nxt.setdefault(end[k], []).append((k, True))

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -88,7 +88,7 @@ def integrate_property(prop: Property, T0_C: Any, T1_C: Any) -> np.ndarray:
     if prop.kind == "constant":
         return prop.constant * (T1 - T0)
     if prop.kind == "poly":
-        antideriv = np.polynomial.polynomial.polyint(prop.coefficients)
+        antideriv = np.polynomial.polynomial.polyint(cast(np.ndarray, prop.coefficients))
         return (np.polynomial.polynomial.polyval(T1, antideriv)
                 - np.polynomial.polynomial.polyval(T0, antideriv))
     if prop.kind == "table":
@@ -98,7 +98,7 @@ def integrate_property(prop: Property, T0_C: Any, T1_C: Any) -> np.ndarray:
 
 def _table_antiderivative(prop: Property, T: np.ndarray) -> np.ndarray:
     """F(T) = int_{T_C[0]}^{T} p of the linear table p, clamped (constant) outside its range."""
-    x, v = prop.T_C, prop.values
+    x, v = cast(np.ndarray, prop.T_C), cast(np.ndarray, prop.values)   # a table property carries both
     if x.size == 1:
         return v[0] * (T - x[0])
     knots = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(x))])
@@ -141,15 +141,15 @@ def free_strain(model: MechanicsModel, T_C: Any, fractions: Mapping[str, Any]) -
     out = np.zeros(np.broadcast_shapes(T.shape, *(np.shape(x) for x in fractions.values())))
     for phase, X in fractions.items():
         out += np.asarray(X) * phase_free_strain(model, phase, T)
-        if model.free_strain_form == "expansion":
-            out += np.asarray(X) * model.transformation_strain.for_phase(phase)(T)
+        if model.free_strain_form == "expansion":   # the expansion form carries its transformation strain
+            out += np.asarray(X) * cast(Property, model.transformation_strain).for_phase(phase)(T)
     return out
 
 
 def transformation_strain(model: MechanicsModel, phase: str, T_C: Any) -> np.ndarray:
     """Linear strain gamma_i(T) of austenite -> phase i at temperature T (zero for austenite)."""
-    if model.free_strain_form == "expansion":
-        return model.transformation_strain.for_phase(phase)(T_C)
+    if model.free_strain_form == "expansion":   # the expansion form carries its transformation strain
+        return cast(Property, model.transformation_strain).for_phase(phase)(T_C)
     return phase_free_strain(model, phase, T_C) - phase_free_strain(model, "austenite", T_C)
 
 
@@ -458,7 +458,7 @@ def check_data(model: MechanicsModel, prefix: str, T_room_C: float = 20.0) -> No
               ("elastic.nu", model.nu, lambda v: (v >= 0.0) & (v < 0.5), "must be in [0, 0.5)")]
     if model.yield_Pa is not None:
         checks += [("plastic.yield_Pa", model.yield_Pa, lambda v: v > 0.0, "must be > 0"),
-                   ("plastic.hardening_Pa", model.hardening_Pa, lambda v: v >= 0.0,
+                   ("plastic.hardening_Pa", cast(Property, model.hardening_Pa), lambda v: v >= 0.0,   # given with yield
                     "must be >= 0: the flow curve sigma_y + H p must not fall with strain")]
     for name, prop, ok, rule in checks:
         for phase in PHASES:
@@ -478,9 +478,10 @@ def check_data(model: MechanicsModel, prefix: str, T_room_C: float = 20.0) -> No
                 raise InputError(where, float(K[(K < lo) | (K > hi)][0]), f"a TRIP constant must lie in [{lo:g}, {hi:g}] 1/Pa")
     for phase in PHASES:
         sub = model.alpha_1_K.for_phase(phase)
-        if sub.kind == "table" and (sub.T_C[0] > T_lo + 1e-9 or sub.T_C[-1] < model.austenitizing_T_C - 1e-9):
+        x = cast(np.ndarray, sub.T_C)   # read for a table only, which carries it
+        if sub.kind == "table" and (x[0] > T_lo + 1e-9 or x[-1] < model.austenitizing_T_C - 1e-9):
             where = f"{prefix}.free_strain.alpha_1_K" + (f".per_phase.{phase}" if model.alpha_1_K.phase_dependent else "")
-            raise InputError(f"{where}.T_C", [float(sub.T_C[0]), float(sub.T_C[-1])],
+            raise InputError(f"{where}.T_C", [float(x[0]), float(x[-1])],
                              f"the table must cover the temperatures used, {T_lo:g}-{model.austenitizing_T_C:g} C")
 
 

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import scipy.sparse as sp
@@ -27,7 +27,7 @@ from quenchsim.errors import InputError
 from quenchsim.fem import INTORDER
 from quenchsim.fem.linalg import norm as _norm
 from quenchsim.fem.linalg import SparseCholesky, pcg
-from quenchsim.materials import PHASES
+from quenchsim.materials import PHASES, Property
 from quenchsim.mechanics.assembly import AxisymmetricAssembler
 from quenchsim.mechanics.constitutive import M_VEC, SQRT2, PointUpdate, lame_bulk_shear, von_mises
 from quenchsim.mechanics.model import MechanicsModel, free_strain, free_strain_increment, trip_saturation
@@ -101,7 +101,8 @@ class _LinearSolver:
     def solve(self, K: sp.csr_matrix, b: np.ndarray, rtol: float) -> np.ndarray:
         if not self._stale:
             x = np.zeros_like(b)
-            done, its = pcg(K, b, x, rtol * _norm(b), self._factor.solve, self.max_cg)
+            # not stale: a factor exists (a solve without one refactorises and leaves it)
+            done, its = pcg(K, b, x, rtol * _norm(b), cast(SparseCholesky, self._factor).solve, self.max_cg)
             self.cg_iterations += its
             self._since_factorisation += its
             self._stale = self._since_factorisation > self.budget  # the next solve refactorises
@@ -257,6 +258,7 @@ class MechanicsSolver:
                     best = (0.5**cut, trial)
                 if trial[2] < norm:
                     break
+            assert best is not None   # the first cut always sets it
             u = u + best[0] * du
             update, residual, norm, f_abs = best[1]
             history.append(norm)
@@ -272,8 +274,9 @@ class MechanicsSolver:
             return st.eq_plastic, None, None
         transformed = np.clip(X0["austenite"] - X1["austenite"], 0.0, 1.0)
         eq_plastic = st.eq_plastic * (1.0 - (1.0 - model.hardening_memory) * transformed)
-        hardening = model.hardening_Pa(T1, X1)
-        return eq_plastic, model.yield_Pa(T1, X1) + hardening * eq_plastic, hardening
+        # a plastic model carries yield_Pa and hardening_Pa
+        hardening = cast(Property, model.hardening_Pa)(T1, X1)
+        return eq_plastic, cast(Property, model.yield_Pa)(T1, X1) + hardening * eq_plastic, hardening
 
     def _trip_increment(self, T1: np.ndarray, X0: Mapping[str, np.ndarray], X1: Mapping[str, np.ndarray]
                         ) -> np.ndarray | None:
@@ -284,7 +287,7 @@ class MechanicsSolver:
             return None
         d_phi = np.zeros(self.asm.radius.shape)
         for phase in PHASES[1:]:
-            d_phi += model.trip_K_1_Pa.for_phase(phase)(T1) * np.maximum(
+            d_phi += cast(Property, model.trip_K_1_Pa).for_phase(phase)(T1) * np.maximum(   # TRIP carries its K
                 trip_saturation(model.trip_law, X1[phase]) - trip_saturation(model.trip_law, X0[phase]), 0.0)
         return d_phi
 

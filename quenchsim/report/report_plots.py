@@ -7,6 +7,7 @@ Sections are drawn in the r-z plane in mm (the VTK files hold x = r, y = z in me
 from __future__ import annotations
 
 import itertools
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -43,7 +44,7 @@ def cooling_curves(time_s: np.ndarray, temperatures_C: dict[str, np.ndarray], ti
     return _png(fig)
 
 
-def field_maps(frame: Frame, fields: list[tuple[str, str, str, float | None, float | None]], title: str) -> bytes:
+def field_maps(frame: Frame, fields: Sequence[tuple[str, str, str, float | None, float | None]], title: str) -> bytes:
     """One tripcolor map per ``(point-data name, label, colormap, vmin, vmax)`` of the last frame."""
     tri = Triangulation(frame.points[:, 0] * 1e3, frame.points[:, 1] * 1e3, frame.triangles)
     width = np.ptp(tri.x) or 1.0

@@ -216,6 +216,7 @@ def _uncertainty_table(run: RunResults) -> list[Item]:
     block = (run.summary or {}).get("uncertainty")
     if not block:
         return []
+    assert run.summary is not None   # it holds the uncertainty block
     nominal = dict(flatten(run.summary))
     rows = [[key, nominal.get(key), b["median"], b["p5"], b["p95"]] for key, b in block["quantities"].items()]
     text = (f"{block['runs_ok']} of {block['runs']} full-chain runs with the inputs drawn from the {block['source']}: "

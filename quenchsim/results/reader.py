@@ -49,7 +49,9 @@ def _csv(path: Path) -> dict[str, np.ndarray] | None:
     data = np.genfromtxt(path, delimiter=",", names=True, ndmin=1)
     if data.size == 0:
         return None
-    return {name: np.atleast_1d(data[name]).astype(float) for name in data.dtype.names}
+    names = data.dtype.names
+    assert names is not None   # names=True gives a structured array
+    return {name: np.atleast_1d(data[name]).astype(float) for name in names}
 
 
 @dataclass

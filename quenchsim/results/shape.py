@@ -29,7 +29,7 @@ has no bore: its bore measures are None.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -90,13 +90,14 @@ def _face_heights(outline_mm: np.ndarray, r_mm: float) -> tuple[float, float]:
 def _line_deviation(outline_mm: np.ndarray, z_lo: float, z_hi: float, side: int) -> tuple[float | None, float | None]:
     """(crown, straightness) of the bore (side 0) or OD (side 1) between the gauge heights, mm on the diameter."""
     heights = np.linspace(z_lo, z_hi, STRAIGHTNESS_POINTS)
-    d = [diameters_at(outline_mm, z)[side] for z in heights]
-    if any(v is None for v in d):
+    d_read = [diameters_at(outline_mm, z)[side] for z in heights]
+    if any(v is None for v in d_read):
         return None, None
-    d = np.asarray(d, dtype=float)
+    d = np.asarray(d_read, dtype=float)
     line = d[0] + (d[-1] - d[0]) * (heights - z_lo) / (z_hi - z_lo)
     z_mid = 0.5 * (z_lo + z_hi)
-    d_mid = diameters_at(outline_mm, z_mid)[side]
+    # the mid height lies between the gauge heights, where every reading above exists
+    d_mid = cast(float, diameters_at(outline_mm, z_mid)[side])
     return float(d_mid - 0.5 * (d[0] + d[-1])), float(np.max(np.abs(d - line)))
 
 
@@ -134,6 +135,11 @@ def shape_measures(outline_mm: np.ndarray, inset_mm: float, inset_fraction: floa
     return {k: out[k] for k in MEASURES}
 
 
+def _difference(a: float | None, b: float | None) -> float | None:
+    """a - b, None where either is None."""
+    return None if b is None or a is None else a - b
+
+
 def shape_change(before_mm: np.ndarray, after_mm: np.ndarray,
                  inset_fraction: float = GAUGE_INSET_FRACTION) -> dict[str, Any]:
     """The ``shape_mm`` block of summary.json: the gauge (inset and the pre-quench heights), the measures
@@ -144,7 +150,7 @@ def shape_change(before_mm: np.ndarray, after_mm: np.ndarray,
     inset = inset_fraction * (z_max - z_min)
     before = shape_measures(before_mm, inset, inset_fraction)
     after = shape_measures(after_mm, inset, inset_fraction)
-    change = {k: None if before[k] is None or after[k] is None else after[k] - before[k] for k in MEASURES}
+    change = {k: _difference(after[k], before[k]) for k in MEASURES}
     gauge = {"inset_mm": inset, "inset_fraction": inset_fraction,
              "heights_before_mm": {"bottom": z_min + inset, "mid": 0.5 * (z_min + z_max), "top": z_max - inset}}
     return {"gauge": gauge, "before": before, "after": after, "change": change}

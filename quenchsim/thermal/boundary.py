@@ -34,7 +34,7 @@ def _table(spec: dict[str, Any], field: str) -> tuple[str, np.ndarray, np.ndarra
     require(h.shape == x.shape, f"{field}.h_W_m2K", spec.get("h_W_m2K"), f"must be a list as long as {axis_key}")
     require(bool(np.all(np.diff(x) > 0)), f"{field}.{axis_key}", spec[axis_key], "must be strictly increasing")
     require(bool(np.all(h >= 0)), f"{field}.h_W_m2K", spec["h_W_m2K"], "values must be >= 0")
-    ambient = spec.get("ambient_C")
+    ambient: Any = spec.get("ambient_C")   # checked by require: a number
     require(isinstance(ambient, (int, float)) and not isinstance(ambient, bool), f"{field}.ambient_C", ambient,
             "must be a number (degrees C)")
     return kind, x, h, float(ambient)

@@ -10,6 +10,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 import skfem
 from scipy.optimize import brentq
@@ -70,7 +72,8 @@ def _facets_at(mesh: skfem.MeshTri, r: float) -> np.ndarray:
 
 
 def _march(mesh: skfem.MeshTri, facets: np.ndarray, h: float, dt: float, t_end: float,
-           ambients: tuple[float, ...] = (50.0,), table_of_point: np.ndarray | None = None,
+           ambients: tuple[float, ...] = (50.0,),
+           table_of_point: Callable[[AxisymmetricP2], np.ndarray] | None = None,
            T0: float = 800.0, order: int = 2) -> tuple[AxisymmetricP2, np.ndarray]:
     fe = AxisymmetricP2(mesh, facets)
     solver = ThermalSolver(fe, constant_properties(), T0, NoTransformation(), np.ones_like(fe.r_qp), order=order)

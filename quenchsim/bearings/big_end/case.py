@@ -126,7 +126,7 @@ def _section(data: dict[str, Any], name: str) -> dict[str, Any]:
 
 
 def _bearing(t: dict[str, Any]) -> Bearing:
-    n = t.get("n_rollers")
+    n: Any = t.get("n_rollers")   # checked by require below
     require(isinstance(n, int) and not isinstance(n, bool) and n >= 3, "bearing.n_rollers", n,
             "must be an integer >= 3")
     lands = t.get("cage_lands", 2)
@@ -152,7 +152,7 @@ def _bearing(t: dict[str, Any]) -> Bearing:
 
 
 def _clearance_sets(data: dict[str, Any], bearing: Bearing, model: Model) -> tuple[ClearanceSet, ...]:
-    sets = data.get("clearance_set")
+    sets: Any = data.get("clearance_set")
     require(isinstance(sets, list) and len(sets) > 0, "clearance_set", sets,
             "at least one [[clearance_set]] is required")
     out = []
@@ -244,12 +244,14 @@ def load_case(path: str | Path) -> BigEndCase:
         raise InputError("INPUT", str(path), f"is not valid TOML ({exc})") from None
     bearing = _bearing(_section(data, "bearing"))
     m = _section(data, "masses")
-    masses = Masses(*(_get(m, "masses", k) for k in ("roller_kg", "roller_inertia_kg_m2", "cage_kg",
-                                                       "cage_inertia_kg_m2", "outer_ring_kg")),
+    roller, roller_inertia, cage, cage_inertia, outer_ring = (
+        _get(m, "masses", k) for k in ("roller_kg", "roller_inertia_kg_m2", "cage_kg", "cage_inertia_kg_m2",
+                                       "outer_ring_kg"))
+    masses = Masses(roller, roller_inertia, cage, cage_inertia, outer_ring,
                     reciprocating=(_get(m, "masses", "reciprocating_kg", positive=False)
                                    if "reciprocating_kg" in m else 0.0))
     lub = _section(data, "lubrication")
-    oil = lub.get("oil")
+    oil: Any = lub.get("oil")
     require(isinstance(oil, str) and oil in available_oils(), "lubrication.oil", oil,
             f"must be one of {available_oils()} (materials/lubricants/*.toml)")
     lubrication = Lubrication(oil, _get(lub, "lubrication", "temperature_C", positive=False),
@@ -263,11 +265,12 @@ def load_case(path: str | Path) -> BigEndCase:
     for k in ("boundary_friction", "pocket_friction", "guide_friction"):
         frictions.append(_get(mod, "model", k, positive=False))
         require(frictions[-1] >= 0.0, f"model.{k}", frictions[-1], "must be >= 0 (a friction coefficient)")
-    model = Model(*frictions, *(_get(mod, "model", k) for k in (
-        "contact_damping_ratio", "friction_regularisation_m_s", "entrainment_floor_m_s")),
-        guide_min_film=_get(mod, "model", "guide_min_film_um") * 1e-6)
+    damping_ratio, friction_regularisation, entrainment_floor = (_get(mod, "model", k) for k in (
+        "contact_damping_ratio", "friction_regularisation_m_s", "entrainment_floor_m_s"))
+    model = Model(frictions[0], frictions[1], frictions[2], damping_ratio, friction_regularisation,
+                  entrainment_floor, guide_min_film=_get(mod, "model", "guide_min_film_um") * 1e-6)
     out = _section(data, "output")
-    spr = out.get("samples_per_revolution")
+    spr: Any = out.get("samples_per_revolution")
     require(isinstance(spr, int) and spr >= 36, "output.samples_per_revolution", spr, "must be an integer >= 36")
     return BigEndCase(path, bearing, masses, _clearance_sets(data, bearing, model), _operations(data), lubrication,
                       model, spr, _get(out, "output", "transient_revolutions", positive=False))

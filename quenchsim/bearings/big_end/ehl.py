@@ -18,6 +18,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from quenchsim.bearings.big_end.contact import FloatOrArray
+
 PAN_HAMROCK_COEFFICIENT = 2.922  # Pan & Hamrock 1989, central film thickness
 PAN_HAMROCK_W_EXP = -0.166
 PAN_HAMROCK_U_EXP = 0.692
@@ -31,16 +33,16 @@ GUPTA_DEN_EXP = 0.64
 
 
 @njit(cache=True)
-def hertz_line_max_pressure(load_per_length_n_m: np.ndarray, radius_m: np.ndarray,
-                            e_star_pa: float) -> np.ndarray:
+def hertz_line_max_pressure(load_per_length_n_m: FloatOrArray, radius_m: FloatOrArray,
+                            e_star_pa: float) -> FloatOrArray:
     """Maximum Hertz pressure p_h = sqrt(w E' / (2 pi R)) of a line contact [Pa]."""
     return np.sqrt(np.maximum(load_per_length_n_m, 0.0) * e_star_pa / (2.0 * np.pi * radius_m))
 
 
 @njit(cache=True)
-def pan_hamrock_central_film(load_per_length_n_m: np.ndarray, entrainment_m_s: np.ndarray,
-                             radius_m: np.ndarray, e_star_pa: float, viscosity_pa_s: float,
-                             pressure_viscosity_1_pa: float) -> np.ndarray:
+def pan_hamrock_central_film(load_per_length_n_m: FloatOrArray, entrainment_m_s: FloatOrArray,
+                             radius_m: FloatOrArray, e_star_pa: float, viscosity_pa_s: float,
+                             pressure_viscosity_1_pa: float) -> FloatOrArray:
     """Isothermal central film thickness h_c [m] (Pan & Hamrock 1989), h_c = R 2.922 W^-0.166 U^0.692 G^0.47."""
     er = e_star_pa * radius_m
     w = np.maximum(load_per_length_n_m, 1e-9) / er
@@ -51,14 +53,14 @@ def pan_hamrock_central_film(load_per_length_n_m: np.ndarray, entrainment_m_s: n
 
 @njit(cache=True)
 def thermal_loading(temperature_viscosity_1_k: float, viscosity_pa_s: float,
-                    entrainment_m_s: np.ndarray, conductivity_w_mk: float) -> np.ndarray:
+                    entrainment_m_s: FloatOrArray, conductivity_w_mk: float) -> FloatOrArray:
     """Thermal loading parameter L = beta eta0 u_e^2 / k_f (dimensionless)."""
     return temperature_viscosity_1_k * viscosity_pa_s * entrainment_m_s**2 / conductivity_w_mk
 
 
 @njit(cache=True)
-def thermal_reduction_factor(max_pressure_pa: np.ndarray, e_star_pa: float, loading: np.ndarray,
-                             slide_roll: np.ndarray) -> np.ndarray:
+def thermal_reduction_factor(max_pressure_pa: FloatOrArray, e_star_pa: float, loading: FloatOrArray,
+                             slide_roll: FloatOrArray) -> FloatOrArray:
     """phi_T = (1 - 13.2 (p_h/E') L^0.42) / (1 + 0.213 (1 + 2.23 |S|^0.83) L^0.64), clipped to [0, 1]."""
     num = 1.0 - GUPTA_LOAD_COEFF * (max_pressure_pa / e_star_pa) * loading**GUPTA_LOAD_EXP
     den = 1.0 + GUPTA_DEN_COEFF * (1.0 + GUPTA_SLIP_COEFF * np.abs(slide_roll) ** GUPTA_SLIP_EXP) \
@@ -67,9 +69,9 @@ def thermal_reduction_factor(max_pressure_pa: np.ndarray, e_star_pa: float, load
 
 
 @njit(cache=True)
-def traction_coefficient(slide_roll: np.ndarray, film_parameter: np.ndarray, limiting_traction: float,
+def traction_coefficient(slide_roll: FloatOrArray, film_parameter: FloatOrArray, limiting_traction: float,
                          slide_roll_scale: float, boundary_friction: float, film_lo: float,
-                         film_hi: float) -> np.ndarray:
+                         film_hi: float) -> FloatOrArray:
     """Signed traction coefficient mu(S, Lambda) (Kannel-Walowit-type film + boundary friction)."""
     shape = np.sign(slide_roll) * (1.0 - np.exp(-np.abs(slide_roll) / slide_roll_scale))
     weight = np.minimum(np.maximum((film_parameter - film_lo) / (film_hi - film_lo), 0.0), 1.0)

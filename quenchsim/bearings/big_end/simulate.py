@@ -18,6 +18,7 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -84,6 +85,7 @@ def build_params(case: BigEndCase, set_number: int, mode: str) -> tuple[Params, 
     theta = np.linspace(0.0, 2 * np.pi, TABLE_POINTS)
     if mode == "engine":
         crank = CrankSlider(op.crank_radius, op.rod_length, omega)
+        assert op.gas_cycle is not None   # the engine operation always carries its gas cycle (case.py)
         fx, fy = big_end_load(theta, crank, op.gas_cycle, op.gas_amplitude_n, m.reciprocating)
         omega_o = crank.rod_angle(theta)[1] - omega
         crank_radius = op.crank_radius
@@ -230,7 +232,7 @@ def slip_histories(p: Params, t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray,
 
 
 def simulate(case: BigEndCase, set_number: int, mode: str, revolutions: float | None = None,
-             method: str | None = None, overrides: dict[str, float] | None = None) -> RunResult:
+             method: str | None = None, overrides: dict[str, Any] | None = None) -> RunResult:
     """Run one case: integrate, then sample pocket forces, loads and slip ratios (``method`` None:
     the measured default of the mode; ``overrides``: model parameters replaced by name, for
     sensitivity studies, e.g. ``{"mu_pocket": 0.0}``)."""

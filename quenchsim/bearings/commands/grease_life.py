@@ -42,8 +42,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> dict:
+    geometry: kin.BearingGeometry | None
     if args.bearing is not None:
-        geometry: kin.BearingGeometry | None = kin.bearing(args.bearing).geometry
+        geometry = kin.bearing(args.bearing).geometry
         dm_mm = geometry.pitch_diameter_m * 1e3
     else:
         dm_mm = args.dm

@@ -71,6 +71,7 @@ def run(args: argparse.Namespace) -> dict:
     E, nu = steel["youngs_modulus_Pa"], steel["poisson"]
     m = (_pick(args.E1_GPa, E, 1e9), _pick(args.nu1, nu), _pick(args.E2_GPa, E, 1e9), _pick(args.nu2, nu))
     if args.contact in ("point", "line"):
+        r: hertz.PointContact | hertz.LineContact
         if args.contact == "point":
             _need(args, "load", "rx1_mm", "ry1_mm", "rx2_mm", "ry2_mm")
             r = hertz.point_contact(args.load, args.rx1_mm * 1e-3, args.ry1_mm * 1e-3, args.rx2_mm * 1e-3,

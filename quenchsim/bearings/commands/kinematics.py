@@ -71,6 +71,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> dict:
     geometry, data = geometry_from_args(args)
+    assert geometry is not None  # configure() makes the geometry options required: geometry_from_args raised otherwise
     f = kin.frequencies(geometry, args.inner_rpm / 60.0, args.outer_rpm / 60.0)
     relative_hz = abs(args.inner_rpm - args.outer_rpm) / 60.0
     out: dict = {"bearing": data.name if data else None, "inner_rpm": args.inner_rpm, "outer_rpm": args.outer_rpm,

@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import pathlib
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -48,7 +49,7 @@ def summary(rev: Revolution, torque_Nm: float) -> dict:
     """Ranges over the revolution (in units of P_n and as N), the share of ball-phases with no outer-track force,
     the 6-per-revolution amplitude of F_ic, and the largest |outer-race torque / T - 1|."""
     pn = rev.p_n_N
-    out = {"p_n_N": pn}
+    out: dict[str, Any] = {"p_n_N": pn}
     for name, arr in (("p_inner", rev.p_inner_N), ("p_outer", rev.p_outer_N), ("p_window", rev.p_window_N),
                       ("f_inner_cage", rev.f_inner_cage_N), ("f_cage_outer", rev.f_cage_outer_N)):
         out[name] = {"min_over_p_n": float(arr.min() / pn), "max_over_p_n": float(arr.max() / pn),

@@ -106,6 +106,7 @@ class LinearisedFilm:
                 "has no stiffness)")
         self.rotor_frame = bearing.grooved_rotor
         if self.rotor_frame:
+            assert bearing.grooves is not None   # a grooved rotor has grooves
             require(eccentricity == 0.0, "eccentricity", eccentricity, "must be 0 for grooves on the rotor (the "
                     "film of an off-centre grooved rotor is periodic in time, not steady)")
             require(bearing.grooves.count >= 3, "grooves.count", bearing.grooves.count,
@@ -136,7 +137,8 @@ class LinearisedFilm:
             plus, minus = list(self._grid_displacement), list(self._grid_displacement)
             plus[k] += h
             minus[k] -= h
-            dflux.append(((self._flux(self.p0, tuple(plus)) - self._flux(self.p0, tuple(minus))) / (2.0 * h))[1:].ravel())
+            dflux.append(((self._flux(self.p0, (plus[0], plus[1])) - self._flux(self.p0, (minus[0], minus[1])))
+                          / (2.0 * h))[1:].ravel())
         self._dflux = np.array(dflux)
         self._dvolume_p0 = np.array([(dv * self.p0)[1:].ravel() for dv in geo.volume_derivatives()])
         self._volume = geo.volume(self.displacement, frame)[1:].ravel()

@@ -52,10 +52,10 @@ def linear_threshold(film: LinearisedFilm, whirl_scan: tuple[float, float, int] 
     require(0.0 < lo < hi and int(n) >= 3, "whirl_scan", whirl_scan, "must be (from, to, points) with "
             "0 < from < to and points >= 3")
     gammas = np.linspace(lo, hi, int(n))
-    eig = [np.linalg.eigvals(film.impedance(gammas[0]))]
+    eig_list = [np.linalg.eigvals(film.impedance(gammas[0]))]
     for g in gammas[1:]:
-        eig.append(_sorted_like(np.linalg.eigvals(film.impedance(g)), eig[-1]))
-    eig = np.array(eig)
+        eig_list.append(_sorted_like(np.linalg.eigvals(film.impedance(g)), eig_list[-1]))
+    eig = np.array(eig_list)
     crossings = []
     for branch in range(2):
         im = eig[:, branch].imag

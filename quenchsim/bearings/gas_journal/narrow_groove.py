@@ -30,6 +30,7 @@ from quenchsim.errors import require
 def ngt_face_coefficients(geo: FilmGeometry, bearing: Bearing, displacement: tuple[float, float]) -> np.ndarray:
     """Half-face coefficients [D_main, D_cross, c] of the narrow-groove film on an unskewed grid."""
     grooves = bearing.grooves
+    assert grooves is not None   # the narrow-groove film is that of a grooved bearing
     grid = geo.grid
     hr = geo.face_films(displacement, FilmFrame())
     hg = hr + grooves.depth_ratio

@@ -162,6 +162,7 @@ def orbit(bearing: Bearing, bearing_number: float, load: float, mass: float, lev
     require(np.isfinite(load) and load >= 0.0, "load", load, "must be >= 0 (W / (pa L D))")
     grid = grid_for_level(level, bearing)
     if bearing.grooved_rotor:
+        assert bearing.grooves is not None   # a grooved rotor has grooves
         max_step = min(max_step, math.pi / bearing.grooves.count / STEPS_PER_GROOVE_PASSAGE)
     film = CrankNicolsonFilm(bearing, grid, bearing_number, method)
     f_ext = load * np.array([math.cos(math.radians(load_angle_deg)), math.sin(math.radians(load_angle_deg))])

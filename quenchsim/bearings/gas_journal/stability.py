@@ -149,7 +149,11 @@ def critical_mass_parameter(bearing: Bearing, bearing_number: float, level: int 
         return res.stable
 
     def result(status: str, message: str, lo: float | None, hi: float | None) -> StabilityResult:
-        critical = math.sqrt(lo * hi) if status == BRACKETED else float("nan")
+        if status == BRACKETED:
+            assert lo is not None and hi is not None   # a bracket has both ends
+            critical = math.sqrt(lo * hi)
+        else:
+            critical = float("nan")
         whirl = whirl_near[hi] if hi is not None else float("nan")
         return StabilityResult(critical, lo, hi, whirl, trials, status, message, (lo_end, hi_end),
                                time.perf_counter() - started)
@@ -198,9 +202,10 @@ def critical_mass_parameter(bearing: Bearing, bearing_number: float, level: int 
             else:
                 hi = mid
     except _Budget as stop:
-        lo, hi = bracket()
-        so_far = (f"stable at {lo:.4g}" if lo is not None else "no stable mass yet") + ", " + (
-            f"unstable at {hi:.4g}" if hi is not None else "no unstable mass yet")
-        return result(stop.status, f"stopped: {stop.detail}; bracket so far: {so_far} ({span})", lo, hi)
+        lo_so_far, hi_so_far = bracket()
+        so_far = (f"stable at {lo_so_far:.4g}" if lo_so_far is not None else "no stable mass yet") + ", " + (
+            f"unstable at {hi_so_far:.4g}" if hi_so_far is not None else "no unstable mass yet")
+        return result(stop.status, f"stopped: {stop.detail}; bracket so far: {so_far} ({span})", lo_so_far,
+                      hi_so_far)
     return result(BRACKETED, f"critical Mbar = {math.sqrt(lo * hi):.4g} (stable at {lo:.4g}, unstable at "
                   f"{hi:.4g}; {tally()})", lo, hi)

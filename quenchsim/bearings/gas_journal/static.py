@@ -67,6 +67,7 @@ def _grooved_rotor(bearing: Bearing, grid: Grid, bearing_number: float, disp: tu
     start = time.perf_counter()
     first = _steady(bearing, grid, bearing_number, disp, method, None, 1.0)
     film = CrankNicolsonFilm(bearing, grid, bearing_number, method)
+    assert bearing.grooves is not None   # called for a grooved rotor only
     period = math.pi / bearing.grooves.count  # rotor turns 2 pi / N_g when T advances pi / N_g
     dt = period / STEPS_PER_GROOVE
     state = FilmState(0.0, disp, first.p)

@@ -21,6 +21,7 @@ import math
 import tomllib
 from dataclasses import dataclass
 from importlib import resources
+from typing import cast
 
 import numpy as np
 
@@ -34,7 +35,8 @@ def crack_data() -> dict:
 
 
 def _poly(coefficients: list[float], xi: np.ndarray | float) -> np.ndarray | float:
-    return np.polynomial.polynomial.polyval(xi, coefficients)
+    # a float xi gives np.float64, a float subclass (numpy's stub says floating[Any])
+    return cast("np.ndarray | float", np.polynomial.polynomial.polyval(xi, coefficients))
 
 
 def F_II(xi: np.ndarray | float) -> np.ndarray | float:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -29,7 +30,7 @@ class ClutchState:
     def summary(self) -> dict:
         """Plain numbers in engineering units (N, deg, MPa, mm) for the CLI and the reports."""
         e = self.engagement
-        out = {"torque_Nm": e.torque_Nm, "roller_load_N": e.roller_load_N,
+        out: dict[str, Any] = {"torque_Nm": e.torque_Nm, "roller_load_N": e.roller_load_N,
                "load_per_torque_N_per_Nm": e.load_per_torque_N_per_Nm,
                "wedge_angle_deg": math.degrees(e.wedge_angle_rad), "traction_ratio": e.traction_ratio,
                "approach_per_contact_mm": e.approach_flat_m * 1e3, "bore_expansion_lame_mm": e.bore_expansion_m * 1e3}

@@ -217,7 +217,7 @@ def parse_case(data: dict[str, Any]) -> RunoutCase:
     for i, row in enumerate(_array_of_tables(data, "waviness")):
         prefix = f"waviness[{i}]"
         _known(row, _WAVINESS_KEYS, prefix)
-        part = row.get("part")
+        part: Any = row.get("part")   # checked by require: one of PARTS
         require(part in PARTS, f"{prefix}.part", part, f"must be one of {', '.join(PARTS)}")
         order = _integer(row, "order", prefix)
         require(order >= 1, f"{prefix}.order", order, "must be an integer >= 1 (lobes per circumference)")
