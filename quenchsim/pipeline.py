@@ -12,15 +12,14 @@ in ``summary.json``.
 
 from __future__ import annotations
 
-import contextlib
 import logging
 import time
-from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+from quenchsim import closing
 from quenchsim.case import Case
 from quenchsim.materials import load_material
 from quenchsim.quench_setup import QuenchModel, require_mechanics_data, stage_htc, stages, step_controller
@@ -34,6 +33,7 @@ from quenchsim.results import RunWriter, files
 from quenchsim.results.assemble import final_frame, nodal_fields, run_summary, summary_or_why_not, with_outcome
 from quenchsim.results.writer import claim_run_folder
 from quenchsim.results.stream import RunRecord
+from quenchsim.results.timings import StageTimings
 
 log = logging.getLogger("quenchsim")
 
@@ -89,12 +89,12 @@ class QuenchRun(QuenchModel):
                                sum(st.duration_s for st in stages(case)), enabled=progress)
         self.bar.phase("meshing")
         super().__init__(case, material, self.writer.mesh_path)
+        self.timings = StageTimings()
         self.counts: dict[str, Any] = {"steps": 0, "rejected": 0, "heat_out_J": 0.0, "latent_J": 0.0}
         self.position: dict[str, Any] = {"stage": 0, "stage_end_s": None, "dt_s": case.time.dt_initial_s}
         self.stress = None if self.mech is None else StressCoupling(
             self.mech, self.thermal, self.phase_model, case.time.mechanics_max_dT_K, case.time.mechanics_max_dX,
-            self.timer, self._count_stress_step)
-        self.timings: dict[str, float] = {}
+            self.timings, self._count_stress_step)
         self.stop = StopRequest()
         self.restored = None if checkpoint is None else restore_run(self, *checkpoint)
         if self.restored is not None:
@@ -138,13 +138,13 @@ class QuenchRun(QuenchModel):
             with signals_as_stop_request(self.stop):
                 self._stages()
                 self.stop.check()
-                end_state = self._end_state()
+                end_state = closing.end_state(self)
                 if end_state["at_room_temperature"]:   # probes.csv ends, like the last frame, on the closing step
                     self.record.step(self.thermal.time_s, self.thermal.T)
         except (KeyboardInterrupt, RunInterrupted) as exc:
             status, error = "interrupted", str(exc) or "interrupted (Ctrl-C)"
             try:
-                end_state = self._end_state(closing_step=False)
+                end_state = closing.end_state(self, closing_step=False)
             except KeyboardInterrupt:   # Ctrl-C again while the stresses catch up: keep the last stress step's
                 end_state = {"at_room_temperature": False, "time_s": float(self.thermal.time_s),
                              "note": "interrupted again while the stresses caught up with the last thermal step: "
@@ -152,7 +152,7 @@ class QuenchRun(QuenchModel):
             log.error("run interrupted at t = %.4g s", self.thermal.time_s)
         except QuenchsimError as exc:
             status, error = "failed", str(exc)
-            end_state = self._end_state(closing_step=False)
+            end_state = closing.end_state(self, closing_step=False)
             log.error("run stopped at t = %.4g s: %s", self.thermal.time_s, exc)
         finally:
             self.record.probes.close()
@@ -176,7 +176,7 @@ class QuenchRun(QuenchModel):
                 position["stage"] = index + 1
                 continue
             self.bar.phase(f"{stage.name}: boundary HTC")
-            with self.timer("bath_htc_s"):
+            with self.timings("bath_htc_s"):
                 htc = stage_htc(case, stage.name, self.points)
             if position["stage_end_s"] is None:  # the stage starts (not resumed within it)
                 position["stage_end_s"] = self.thermal.time_s + stage.duration_s
@@ -191,7 +191,7 @@ class QuenchRun(QuenchModel):
                     self.stop.check()
                 dt = min(position["dt_s"], t_end - self.thermal.time_s)
                 try:
-                    with self.timer("thermal_metallurgy_s"):
+                    with self.timings("thermal_metallurgy_s"):
                         step = self.thermal.try_step(dt, htc)
                 except SolverError as exc:
                     if not steps.can_halve(dt):
@@ -222,7 +222,7 @@ class QuenchRun(QuenchModel):
                 self.record.step(self.thermal.time_s, self.thermal.T)
                 if self.record.frame_due(self.thermal.T):
                     self._mechanics_catch_up()
-                    with self.timer("output_s"):
+                    with self.timings("output_s"):
                         self.record.frame(self.thermal.time_s, self.thermal.T, self.nodal_fields())
                 position["dt_s"] = steps.next_dt(dt, limit)
                 observer.step(dt, dX, step.max_dT_K, T_qp_before)
@@ -234,39 +234,8 @@ class QuenchRun(QuenchModel):
 
     def _checkpoint(self) -> None:
         """Write the whole state after the last committed step to the run folder (:func:`save_run`)."""
-        with self.timer("checkpoint_s"):
+        with self.timings("checkpoint_s"):
             save_run(self)
-
-    def _end_state(self, closing_step: bool = True) -> dict[str, Any]:
-        """Close the run at room temperature when the part has cooled to within ``air.until_max_C``;
-        otherwise (a stage that ended early, a failed or interrupted run) report the hot state as it is."""
-        T_max, T_min = float(np.max(self.thermal.T)), float(np.min(self.thermal.T))
-        cooled = T_max <= self.case.air.until_max_C + 1e-9
-        if closing_step and cooled:
-            self._equilibrate_at_room_temperature()
-            return {"at_room_temperature": True, "time_s": float(self.thermal.time_s),
-                    "max_temperature_before_closing_C": T_max}
-        try:   # the stresses of the last thermal state (a failed or interrupted run; the checkpoint is written)
-            self._mechanics_catch_up()
-        except SolverError as exc:
-            log.error("stresses and dimensions are those at the last stress step before t = %.4g s: %s",
-                      self.thermal.time_s, exc)
-        note = ("the part is still hot: temperatures, phases, hardness, dimensions and stresses are those at the "
-                "end of the last stage, not of the cooled part")
-        if closing_step:
-            log.warning("the air stage ended at t = %.4g s with the part at up to %.0f C (air.until_max_C = %g C): %s",
-                        self.thermal.time_s, T_max, self.case.air.until_max_C, note)
-        return {"at_room_temperature": False, "time_s": float(self.thermal.time_s), "max_temperature_C": T_max,
-                "min_temperature_C": T_min, "note": note}
-
-    @contextlib.contextmanager
-    def timer(self, key: str) -> Iterator[None]:
-        """Accumulate the wall time of a block into ``self.timings[key]`` (reported in summary.json)."""
-        t0 = time.perf_counter()
-        try:
-            yield
-        finally:
-            self.timings[key] = self.timings.get(key, 0.0) + time.perf_counter() - t0
 
     def _count_stress_step(self) -> None:
         self.counts["stress_steps"] = self.counts.get("stress_steps", 0) + 1
@@ -275,20 +244,6 @@ class QuenchRun(QuenchModel):
         """Bring the stresses to the committed thermal state (:meth:`StressCoupling.catch_up`)."""
         if self.stress is not None:
             self.stress.catch_up()
-
-    def _equilibrate_at_room_temperature(self) -> None:
-        """Final state: the whole ring at room temperature (the air stage ended with the hottest point below
-        air.until_max_C; the last few kelvin are one step, with the martensite they still form).
-
-        The step takes no time for the diffusional reactions (dt = 0): its length is not modelled, and an
-        assumed hour at 20-40 C had let the peer's bainite law, extrapolated far below its 240-440 C data,
-        form 0.02 bainite out of retained austenite after the quench had ended."""
-        T_room = np.full(self.thermal.T.shape, self.T_room)
-        T_qp = self.fe.at_qp(T_room)
-        state = self.phase_model.advance(self.thermal.phase_state, self.thermal.T_qp, T_qp, 0.0)
-        if self.stress is not None:
-            self.stress.to(T_qp, self.phase_model.fractions(state), "in the final step to room temperature")
-        self.thermal.T, self.thermal.T_qp, self.thermal.phase_state = T_room, T_qp, state
 
     def summary(self, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wall0: float) -> dict[str, Any]:
         """summary.json of the finished run (:func:`quenchsim.results.assemble.run_summary`)."""

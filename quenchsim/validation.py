@@ -369,6 +369,7 @@ def _study_folders(study: Study) -> list[Path]:
 
 def study_inputs(study: Study, root: Path = ROOT) -> StudyInputs:
     """The code and data ``study`` depends on (``root``: the checkout holding quenchsim/, cases/, materials/)."""
+    from quenchsim.behaviour import behaviour_bytes
     from quenchsim.dependencies import code_closure, data_files, named_files, package_data
     from quenchsim.materials import materials_dir
 
@@ -390,12 +391,12 @@ def study_inputs(study: Study, root: Path = ROOT) -> StudyInputs:
                 return prefix + path.relative_to(base).as_posix()
         return path.as_posix()
 
-    digest = hashlib.sha1(b"study inputs v2")
+    digest = hashlib.sha1(b"study inputs v3")
     code = sorted({name(p): p for p in closure.modules.values()}.items())
     files = sorted({name(p): p for p in data}.items())
     for key, path in [*code, *files]:
         digest.update(f"\0{key}\0".encode())
-        digest.update(path.read_bytes())
+        digest.update(behaviour_bytes(path))
     for key, source in sorted(closure.parts.items()):
         digest.update(f"\0{key}\0{source}".encode())
     return StudyInputs(tuple([k for k, _ in code] + sorted(closure.parts)), tuple(k for k, _ in files),

@@ -42,7 +42,12 @@ def test_a_progress_bar_edit_leaves_every_study_fresh_and_a_bath_edit_only_the_b
     edit(checkout / "quenchsim" / "progress" / "forecasts.py", '"""', '"""Edited. ')   # a submodule: an observer too
     assert fingerprints(checkout) == before
 
+    # wording, comments and type hints cannot change a result: the bath's docstring, a comment and an annotation
     edit(checkout / "quenchsim" / "bath" / "htc.py", '"""', '"""Edited. ')
+    edit(checkout / "quenchsim" / "bath" / "config.py", "\n", "\n# a comment\n")
+    edit(checkout / "quenchsim" / "bath" / "config.py", "def load_constants(name: str,", "def load_constants(name: object,")
+    assert fingerprints(checkout) == before
+    edit(checkout / "quenchsim" / "bath" / "config.py", "MAX_ROTATION_RPM = 600.0", "MAX_ROTATION_RPM = 601.0")
     after = fingerprints(checkout)
     bearings = [k for k in before if k.startswith("bearings/")]
     quench = ["quench/ring_a", "quench/ring_b", "quench/convergence", "quench/peer_race", "bath/model",
@@ -131,3 +136,23 @@ def test_check_fails_on_a_regression_and_reports_an_open_miss(toy, tmp_path, cap
     assert check({"ratio": 0.7, "table": {"a": 2.0}}, "--strict") == 1
     assert check({"ratio": 0.9, "table": {"a": 2.0}}) == 1  # a target that is not declared open is missed
     assert "MISSED:" in capsys.readouterr().out
+
+
+def test_behaviour_bytes_ignore_wording_and_type_hints_but_not_code(tmp_path):
+    from quenchsim.behaviour import behaviour_bytes
+
+    def of(text: str) -> bytes:
+        path = tmp_path / f"m{abs(hash(text))}.py"
+        path.write_text(text)
+        return behaviour_bytes(path)
+
+    base = of('"""Doc."""\ndef f(x: float) -> float:\n    """Twice."""\n    y: float = 2.0\n    return y * x\n')
+    assert of('# note\ndef f(x: "np.ndarray") -> object:\n    y: int = 2.0  # was float\n    return y * x\n') == base
+    assert of('def f(x):\n    y = 2.0\n    return y * x\n') != base            # an annotated local became a plain one
+    assert of('def f(x: float) -> float:\n    y: float = 2.0\n    return x * y\n') != base   # operand order
+    assert of('def f(x: float) -> float:\n    y: float = 3.0\n    return y * x\n') != base
+    # a class's annotations are fields (dataclasses) or not (ClassVar): they count
+    cls = of("class A:\n    x: int = 1\n")
+    assert of("class A:\n    x: ClassVar[int] = 1\n") != cls
+    (tmp_path / "m.toml").write_text("a = 1  # a comment in data counts\n")
+    assert behaviour_bytes(tmp_path / "m.toml") == b"a = 1  # a comment in data counts\n"

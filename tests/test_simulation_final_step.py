@@ -16,7 +16,9 @@ import pytest
 import tomli_w
 from conftest import default_ctrl_c
 
+import quenchsim.closing
 from quenchsim.case import case_from_dict
+from quenchsim.closing import close_at_room_temperature
 from quenchsim.pipeline import QuenchRun
 
 
@@ -39,7 +41,7 @@ def warm_ring() -> dict:
 
 def test_closing_step_forms_martensite_but_no_diffusional_product(tmp_path, monkeypatch):
     seen = {}
-    closing = QuenchRun._equilibrate_at_room_temperature
+    closing = close_at_room_temperature
 
     def recorded(run):
         seen["T_C"] = run.thermal.T_qp.copy()
@@ -47,7 +49,7 @@ def test_closing_step_forms_martensite_but_no_diffusional_product(tmp_path, monk
         closing(run)
         seen["after"] = run.thermal.fractions()
 
-    monkeypatch.setattr(QuenchRun, "_equilibrate_at_room_temperature", recorded)
+    monkeypatch.setattr(quenchsim.closing, "close_at_room_temperature", recorded)
     case = warm_ring()
     case["air"]["until_max_C"] = 260.0   # the user's tolerance: close the run once the part is below 260 C
     QuenchRun(case_from_dict(case), tmp_path, progress=False).run()
