@@ -185,3 +185,26 @@ def test_peak_and_collapse_rise_with_speed_and_subcooling():
     hot = local_flow(parse_bath(dict(case_a_bath_spec("1"), oil_temperature_C=100.0)), RING_A)
     assert np.all(film_collapse_temperature(oil, cold, 40.0) > film_collapse_temperature(oil, hot, 100.0))
     assert np.all(critical_heat_flux(oil, cold, 40.0) > critical_heat_flux(oil, hot, 100.0))
+
+
+def test_per_surface_htc_factor_scales_each_face_and_chamfers_by_the_geometric_mean():
+    """``htc_factor`` multiplies h(T_s) of the named faces exactly; a chamfer chamfer_<a>_<b> takes sqrt(f_a f_b),
+    a face not named keeps its h; the constants file's nominal factors (1) leave h unchanged."""
+    base = boundary_htc(parse_bath(case_a_bath_spec("1")), RING_A)
+    spec = dict(case_a_bath_spec("1"), htc_factor={"od": 0.5, "top": 2.0})
+    scaled = boundary_htc(parse_bath(spec), RING_A)
+    seg = RING_A.segment
+    expected = {"od": 0.5, "top": 2.0, "bore": 1.0, "bottom": 1.0, "chamfer_od_top": 1.0, "chamfer_od_bottom": 0.5 ** 0.5,
+                "chamfer_id_top": 2.0 ** 0.5, "chamfer_id_bottom": 1.0}
+    for name, f in expected.items():
+        idx = np.flatnonzero(seg == name)
+        assert idx.size > 0
+        np.testing.assert_allclose(scaled.h_W_m2K[idx], f * base.h_W_m2K[idx], rtol=1e-12)
+    assert parse_bath(case_a_bath_spec("1")).htc_factor == {"bore": 1.0, "od": 1.0, "top": 1.0, "bottom": 1.0}
+
+
+def test_htc_factor_out_of_range_is_one_line_naming_the_field():
+    from quenchsim.errors import InputError
+
+    with pytest.raises(InputError, match=r"quench\.bath\.htc_factor\.od = 0\.0: must be >= 0\.05"):
+        parse_bath(dict(case_a_bath_spec("1"), htc_factor={"od": 0.0}))

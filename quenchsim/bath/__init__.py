@@ -37,6 +37,9 @@ The ``[quench.bath]`` table (units as suffixes; condition overrides merged in be
                                          # turned ~90 deg from the jet (0-1)
     id_crossflow_up_m_s = 0.2            # vertical oil speed (up > 0) the "id" jets cross on their way
     od_crossflow_up_m_s = 0.0            # same for the "od" rows (-5..5 m/s)
+    htc_factor = { od = 0.8 }            # factors on h(T_s) per surface (bore, od, top, bottom, or a segment name;
+                                         # 0.05-20); a chamfer takes the geometric mean of its two faces'; default:
+                                         # the constants file's [htc_factor] (jet_bath: 1 on every surface)
     T_max_C = 1100.0                     # top of the HTC(T) grid (clamped above), default 1100
     T_step_K = 2.0                       # grid step, default 2
 

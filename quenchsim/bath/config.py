@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, cast
 
@@ -24,10 +24,13 @@ CONSTANT_LIMITS = {"corner_carryover": (0.0, 1.0), "oil_swirl_fraction": (0.0, 1
                    "id_crossflow_up_m_s": (-5.0, 5.0), "od_crossflow_up_m_s": (-5.0, 5.0)}
 DEFAULT_CONSTANTS = "jet_bath"
 """The declared flow constants used when a case names none (materials/baths/jet_bath.toml)."""
+HTC_FACTOR_LIMITS = (0.05, 20.0)
+"""Accepted range of a per-surface factor on the bath's heat-transfer coefficient (``[htc_factor]`` of the constants
+file, or the case's ``htc_factor`` table)."""
 FLOW_KEYS = ("rotation_rpm", "nozzles", "layout", "id_jet_speed_mm_s", "od_jet_speed_mm_s", "agitation_m_s",
              *CONSTANT_KEYS)
 BATH_KEYS = ("quenchant", "liquid_properties", "oil_temperature_C", "agitation", "support", "support_open_fraction",
-             "turntable_open_fraction", "constants", "T_max_C", "T_step_K", *FLOW_KEYS)
+             "turntable_open_fraction", "constants", "htc_factor", "T_max_C", "T_step_K", *FLOW_KEYS)
 ROW_KEYS = ("side", "diameter_mm", "count", "standoff_mm", "height_mm", "height_fraction", "inclination_deg",
             "jet_speed_mm_s")
 SUPPORTS = ("turntable", "fixture", "hanging")
@@ -96,6 +99,10 @@ class BathConfig:
     crossflow_up_m_s: dict[str, float]
     T_max_C: float
     T_step_K: float
+    htc_factor: dict[str, float] = field(default_factory=dict)
+    """Factor on the coefficient h(T_s) of every point of a named boundary segment (``bore``, ``od``, ``top``,
+    ``bottom``, or any segment name of the profile); a chamfer ``chamfer_<a>_<b>`` not named itself takes the
+    geometric mean of the factors of ``a`` and ``b``; every other segment 1 (:func:`segment_factor`)."""
 
     @property
     def omega_rad_s(self) -> float:
@@ -153,16 +160,47 @@ def _row(name: str, spec: Any, bath: dict[str, Any], field: str, where: str | No
                      inclination_rad=math.radians(_number(spec, "inclination_deg", where, 0.0, lo=-80.0, hi=80.0)))
 
 
-def load_constants(name: str, field: str = "quench.bath.constants") -> dict[str, float]:
-    """The declared flow constants of ``materials/baths/NAME.toml`` (``kind = "bath_constants"``, table ``[flow]``)."""
+def _constants_file(name: str, field: str) -> dict[str, Any]:
     data = load_data_file(name, "baths", field)
     if data.get("kind") != "bath_constants":
         raise InputError(field, name, f"is a {data.get('kind', 'untyped')} file; a bath_constants file is needed")
-    flow = _plain(data.get("flow", {}))
+    return data
+
+
+def load_constants(name: str, field: str = "quench.bath.constants") -> dict[str, float]:
+    """The declared flow constants of ``materials/baths/NAME.toml`` (``kind = "bath_constants"``, table ``[flow]``)."""
+    flow = _plain(_constants_file(name, field).get("flow", {}))
     for key in CONSTANT_KEYS:
         lo, hi = CONSTANT_LIMITS[key]
         _number(flow, key, f"{Path(name).stem}.flow", lo=lo, hi=hi)
     return {key: float(flow[key]) for key in CONSTANT_KEYS}
+
+
+def htc_factors(spec: Any, field: str) -> dict[str, float]:
+    """A table of per-segment factors on h: ``{segment: factor}`` (or ``{segment: {value, range, source}}``), each in
+    :data:`HTC_FACTOR_LIMITS`."""
+    if not isinstance(spec, dict):
+        raise InputError(field, spec, "must be a table {bore = f, od = f, top = f, bottom = f} of factors on h")
+    plain = _plain(spec)
+    lo, hi = HTC_FACTOR_LIMITS
+    return {str(k): _number(plain, k, field, lo=lo, hi=hi) for k in plain}
+
+
+def load_htc_factors(name: str, field: str = "quench.bath.constants") -> dict[str, float]:
+    """The declared per-surface factors on h of a constants file (table ``[htc_factor]``; none: every factor 1)."""
+    return htc_factors(_constants_file(name, field).get("htc_factor", {}), f"{Path(name).stem}.htc_factor")
+
+
+def segment_factor(factors: dict[str, float], segment: str) -> float:
+    """The factor on h of a boundary segment: its own, else for ``chamfer_<a>_<b>`` the geometric mean of ``a``'s
+    and ``b``'s (1 for a name not given), else 1."""
+    if segment in factors:
+        return factors[segment]
+    parts = segment.split("_")
+    if len(parts) == 3 and parts[0] == "chamfer":
+        side = "bore" if parts[1] == "id" else parts[1]   # the diagnostic outlines name the bore side "id"
+        return math.sqrt(factors.get(side, 1.0) * factors.get(parts[2], 1.0))
+    return 1.0
 
 
 def load_layout(name: str, bath: dict[str, Any], field: str = "quench.bath.layout") -> tuple[NozzleRow, ...]:
@@ -250,6 +288,8 @@ def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
     for key in CONSTANT_KEYS:
         if key in spec:
             constants[key] = _number(spec, key, field, lo=CONSTANT_LIMITS[key][0], hi=CONSTANT_LIMITS[key][1])
+    factors = {**load_htc_factors(constants_name, f"{field}.constants"),
+               **htc_factors(spec.get("htc_factor", {}), f"{field}.htc_factor")}
     T_max = _number(spec, "T_max_C", field, 1100.0, hi=2000.0)
     if T_max <= oil.boiling_point_C:
         raise InputError(f"{field}.T_max_C", T_max, f"must exceed the boiling point {oil.boiling_point_C:g} C")
@@ -264,4 +304,5 @@ def parse_bath(spec: dict[str, Any], field: str = "quench.bath") -> BathConfig:
         corner_carryover=constants["corner_carryover"],
         crossflow_up_m_s={side: constants[f"{side}_crossflow_up_m_s"] for side in SIDES},
         T_max_C=T_max,
-        T_step_K=_number(spec, "T_step_K", field, 2.0, lo=0.1, hi=50.0))
+        T_step_K=_number(spec, "T_step_K", field, 2.0, lo=0.1, hi=50.0),
+        htc_factor=factors)

@@ -42,7 +42,7 @@ from typing import Any
 
 import numpy as np
 
-from quenchsim.bath.config import BathConfig
+from quenchsim.bath.config import BathConfig, segment_factor
 from quenchsim.bath.correlations import (GRAVITY, MARTIN_PR_EXPONENT, berenson_minimum_film_superheat,
                                          bromley_film_htc, churchill_usagi, flat_plate_local_nusselt,
                                          forced_film_htc, horizontal_plate_natural_nusselt, ivey_morris_factor,
@@ -286,6 +286,9 @@ def boundary_htc(cfg: BathConfig, points: BoundaryPoints) -> BoundaryHTC:
         q, h_c, T_L, T_peak = still_curve_heat_flux(cfg.still_curve, cfg.liquid, flow, T_grid, T_oil)
     dT = (T_grid - T_oil)[None, :]
     h = np.where(dT > 0.0, q / np.where(dT > 0.0, dT, 1.0), h_c) * flow.exposed_fraction[:, None]
+    if cfg.htc_factor:
+        factor = {name: segment_factor(cfg.htc_factor, name) for name in set(points.segment.tolist())}
+        h = h * np.array([factor[name] for name in points.segment.tolist()])[:, None]
     n = len(points)
     return BoundaryHTC(T_grid_C=T_grid, h_W_m2K=h, ambient_C=np.full(n, T_oil), velocity_m_s=flow.velocity_m_s,
                        segment=np.asarray(points.segment), length_m=flow.length_m, leidenfrost_C=T_L,
