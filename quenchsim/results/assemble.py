@@ -14,8 +14,8 @@ from quenchsim.geometry.profile import MM
 from quenchsim.results.measured import compare_with_measured
 from quenchsim.results.postprocess import phase_statistics
 from quenchsim.results.shape import shape_change
-from quenchsim.results.summary import (FinalSection, hardness_summary, probe_times, residual_stress_summary,
-                                       residual_traverse)
+from quenchsim.results.summary import (FinalSection, hardness_summary, probe_state, probe_times,
+                                       residual_stress_summary, residual_traverse)
 
 
 def nodal_fields(run: Any) -> dict[str, np.ndarray]:
@@ -97,6 +97,12 @@ def run_summary(run: Any, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wa
         out["hardness"], traverse = hardness_summary(run.profile, run.projection.p1, final, fields["hardness_HRC"])
         run.writer.hardness_traverse(traverse["bore"][0], traverse["bore"][1], traverse["od"][1])
         out["phases_final"] = phase_statistics(run.thermal.fractions(), run.fe.r_dx)
+        if case.probes:   # the final phases and hardness where the thermocouples sit (austenitised geometry)
+            pts = np.array([[p.r_mm, p.z_mm] for p in case.probes]).T * MM * run.case_to_hot
+            phases = tuple(run.thermal.fractions())
+            state = probe_state(run.projection.p1, pts, [p.name for p in case.probes], fields, phases)
+            for name, entry in state.items():
+                out["probes"][name].update(entry)
     if run.mech is not None:
         out.update(mechanics_summary(run, final))
         measured = compare_with_measured(out.get("dimensions_mm"), dict(case.data), case.condition)

@@ -20,11 +20,31 @@ HRC_THRESHOLD = 58.0
 criterion of through-hardening bearing steels)."""
 
 
-def probe_times(time_s: np.ndarray, probe_T: dict[str, np.ndarray]) -> dict[str, dict[str, float | None]]:
-    """Per probe: time to 500 C and 300 C, and t8/5 (800 -> 500 C), None where not reached."""
+PROBE_TEMPERATURES_C = (800, 700, 600, 500, 400, 300, 200, 100)
+"""Temperatures whose first passage time is reported per probe (``t_to_C_s``): a measured thermocouple curve is
+compared with the run at these (quenchsim.calibration)."""
+
+
+def probe_times(time_s: np.ndarray, probe_T: dict[str, np.ndarray]) -> dict[str, dict[str, Any]]:
+    """Per probe: time to 500 C and 300 C, t8/5 (800 -> 500 C), and the time to each of
+    :data:`PROBE_TEMPERATURES_C` (``t_to_C_s``, keyed by the temperature's integer text); None where not reached."""
     return {n: {"t_to_500C_s": time_to_temperature(time_s, T, 500.0),
                 "t_to_300C_s": time_to_temperature(time_s, T, 300.0),
-                "t8_5_s": _t_between(time_s, T, 800.0, 500.0)} for n, T in probe_T.items()}
+                "t8_5_s": _t_between(time_s, T, 800.0, 500.0),
+                "t_to_C_s": {str(Tc): time_to_temperature(time_s, T, float(Tc)) for Tc in PROBE_TEMPERATURES_C}}
+            for n, T in probe_T.items()}
+
+
+def probe_state(p1: skfem.Basis, points_m: np.ndarray, names: list[str],
+                fields: dict[str, np.ndarray], phases: tuple[str, ...]) -> dict[str, dict[str, Any]]:
+    """Per probe: the final phase fractions and HRC at its position (``points_m``, shape (2, n), r and z in the
+    coordinates of the basis ``p1``), interpolated from the nodal fields."""
+    reading = p1.probes(points_m)
+    out: dict[str, dict[str, Any]] = {}
+    values = {k: reading @ fields[k] for k in (*phases, "hardness_HRC")}
+    for i, name in enumerate(names):
+        out[name] = {"phases": {k: float(values[k][i]) for k in phases}, "HRC": float(values["hardness_HRC"][i])}
+    return out
 
 
 def _t_between(time_s: np.ndarray, T: np.ndarray, upper: float, lower: float) -> float | None:
@@ -52,6 +72,12 @@ class FinalSection:
         r = _polygon_cuts(self.outline_m, z_mid)
         return z_mid, float(r.min()), float(r.max())
 
+    def mesh_gaps(self, z: float, r_bore: float, r_od: float) -> tuple[float, float]:
+        """How far inside the outline's bore and OD radii (at height z) the straight-edged P1 mesh begins (0 where
+        it reaches the outline): a curved (quadratic) surface may bulge beyond the mesh the nodal fields live on."""
+        cuts = _mesh_cuts(self.p1.mesh, z)
+        return max(0.0, float(cuts.min()) - r_bore), max(0.0, r_od - float(cuts.max()))
+
 
 def _polygon_cuts(outline_m: np.ndarray, z: float) -> np.ndarray:
     """Radii where the horizontal line at height z crosses a closed outline (loops joined by NaN rows)."""
@@ -62,12 +88,23 @@ def _polygon_cuts(outline_m: np.ndarray, z: float) -> np.ndarray:
     return x[hit] + (z - y[hit]) * (x2[hit] - x[hit]) / (y2[hit] - y[hit])
 
 
+def _mesh_cuts(mesh: skfem.MeshTri, z: float) -> np.ndarray:
+    """Radii where the horizontal line at height z crosses the boundary edges of a P1 mesh."""
+    ends = mesh.p[:, mesh.facets[:, mesh.boundary_facets()]]   # (r/z, end, facet)
+    a, b = ends[:, 0, :], ends[:, 1, :]
+    hit = ((a[1] - z) * (b[1] - z) <= 0) & (a[1] != b[1])
+    return a[0, hit] + (z - a[1, hit]) * (b[0, hit] - a[0, hit]) / (b[1, hit] - a[1, hit])
+
+
 def hardness_traverse(final: FinalSection, hrc_nodal: np.ndarray, side: str,
                       n: int = 400) -> tuple[np.ndarray, np.ndarray]:
     """HRC along mid-width from the bore ("bore") or OD ("od") surface of the final part into the wall:
-    (depth below that surface in mm, HRC)."""
+    (depth below that surface in mm, HRC). The traverse starts and ends 1 um inside the outline, or inside the
+    straight-edged P1 mesh the nodal field lives on where a curved (quadratic) surface bulges beyond it."""
     z_mid, r_bore, r_od = final.mid_width()
-    depth = np.linspace(1e-6, r_od - r_bore - 1e-6, n)   # 1 um inside: the traverse ends on the surfaces
+    gap_bore, gap_od = final.mesh_gaps(z_mid, r_bore, r_od)
+    near, far = (gap_bore, gap_od) if side == "bore" else (gap_od, gap_bore)
+    depth = np.linspace(near + 1e-6, r_od - r_bore - far - 1e-6, n)   # 1 um inside: the traverse ends on the surfaces
     r = r_bore + depth if side == "bore" else r_od - depth
     probe = final.p1.probes(np.vstack([r, np.full_like(r, z_mid)]))
     return depth / MM, probe @ hrc_nodal
@@ -105,9 +142,11 @@ def hardness_summary(profile: Profile, p1: skfem.Basis, final: FinalSection, hrc
 
 def residual_traverse(final: FinalSection, fields: dict[str, np.ndarray],
                       n: int = 200) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Hoop and axial stress (MPa) across the wall of the final part at mid-width: (r_mm, hoop, axial)."""
+    """Hoop and axial stress (MPa) across the wall of the final part at mid-width: (r_mm, hoop, axial); the ends
+    1 um inside the outline, or inside the P1 mesh where the surface bulges beyond it."""
     z_mid, r_bore, r_od = final.mid_width()
-    r = np.linspace(r_bore + 1e-6, r_od - 1e-6, n)
+    gap_bore, gap_od = final.mesh_gaps(z_mid, r_bore, r_od)
+    r = np.linspace(r_bore + gap_bore + 1e-6, r_od - gap_od - 1e-6, n)
     probe = final.p1.probes(np.vstack([r, np.full_like(r, z_mid)]))
     return r / MM, probe @ fields["stress_tt_Pa"] / 1e6, probe @ fields["stress_zz_Pa"] / 1e6
 
