@@ -7,7 +7,8 @@
 * a package that is only the parent of an imported module contributes its module-level imports (what runs when
   the submodule is imported), not the imports inside its functions, nor those under ``if TYPE_CHECKING:``;
 * a string constant naming a module (``"quenchsim.commands.run"`` in the CLI's table, ``-m quenchsim.cli``) counts
-  as an import of it: the CLI imports its commands by name;
+  as an import of it: the CLI imports its commands by name -- except in the modules of :data:`NAMES_ONLY`, whose
+  module names are the subjects of their analysis, not code they run;
 * the modules of :data:`BY_NAME` are followed per imported name, so a study that takes ``cached_run`` from the
   validation runner depends on the quench pipeline and one that takes ``study_targets`` does not;
 * the modules of :data:`OBSERVERS` are left out.
@@ -34,6 +35,9 @@ they return reaches a result, so an edit there cannot move a number. A package's
 def _observer(module: str) -> bool:
     """Whether ``module`` is one of the :data:`OBSERVERS` or a submodule of one."""
     return any(module == o or module.startswith(f"{o}.") for o in OBSERVERS)
+NAMES_ONLY = frozenset({"quenchsim.dependencies", "quenchsim.fingerprint"})
+"""Modules whose module-naming strings (this module's special cases, the run fingerprint's run modules) are not
+imports."""
 BY_NAME = frozenset({"quenchsim.validation"})
 """Modules followed per imported name: the studies' runner, whose helpers pull in very different code."""
 MATERIALS_READERS = ("quenchsim.materials",)
@@ -86,9 +90,9 @@ def _absolute(node: ast.ImportFrom, package: str) -> str:
     return ".".join(base + ([node.module] if node.module else []))
 
 
-def _imports_in(nodes: Iterable[ast.AST], package: str, into_functions: bool) -> list[_Import]:
-    """The quenchsim imports (and module-naming string constants) under ``nodes``, skipping ``if TYPE_CHECKING:``
-    bodies and, unless ``into_functions``, function bodies."""
+def _imports_in(nodes: Iterable[ast.AST], package: str, into_functions: bool, names: bool = True) -> list[_Import]:
+    """The quenchsim imports (and, with ``names``, module-naming string constants) under ``nodes``, skipping
+    ``if TYPE_CHECKING:`` bodies and, unless ``into_functions``, function bodies."""
     found: list[_Import] = []
     stack = list(nodes)
     while stack:
@@ -104,7 +108,7 @@ def _imports_in(nodes: Iterable[ast.AST], package: str, into_functions: bool) ->
             module = _absolute(node, package)
             if module.split(".")[0] == PACKAGE:
                 found.append(_Import(module, tuple(a.name for a in node.names)))
-        elif isinstance(node, ast.Constant) and isinstance(node.value, str) and _MODULE_NAME.match(node.value):
+        elif names and isinstance(node, ast.Constant) and isinstance(node.value, str) and _MODULE_NAME.match(node.value):
             found.append(_Import(node.value))
         stack.extend(ast.iter_child_nodes(node))
     return found
@@ -144,8 +148,9 @@ def _analyse(module: str, is_package: bool, text: str) -> _Analysis:
     tree = ast.parse(text)
     package = module if is_package else module.rpartition(".")[0]
     strings = {n.value for n in ast.walk(tree) if isinstance(n, ast.Constant) and isinstance(n.value, str)}
-    return _Analysis(tuple(_imports_in(tree.body, package, into_functions=False)),
-                     tuple(_imports_in(tree.body, package, into_functions=True)),
+    names = module not in NAMES_ONLY
+    return _Analysis(tuple(_imports_in(tree.body, package, into_functions=False, names=names)),
+                     tuple(_imports_in(tree.body, package, into_functions=True, names=names)),
                      _definitions(tree, text, package) if module in BY_NAME else {},
                      "materials" in strings)
 

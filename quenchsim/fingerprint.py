@@ -23,13 +23,35 @@ def code_fingerprint() -> str:
     return _fingerprint(tuple(f.resolve() for f in data_folders() if f != shipped), shipped.resolve())
 
 
-@functools.lru_cache(maxsize=4)
-def _fingerprint(user_folders: tuple[Path, ...], shipped: Path) -> str:
+RUN_MODULES = ("quenchsim.pipeline", "quenchsim.sweep")
+"""What executes a run (the staged run and the sweep's run of one case): :func:`run_fingerprint` covers their
+import closure (:mod:`quenchsim.dependencies`), not the calibration, report or command code around them."""
+
+
+def run_fingerprint() -> str:
+    """Like :func:`code_fingerprint`, but over only the modules a run executes (the import closure of
+    :data:`RUN_MODULES`, with the data files that travel with them) and the data folders: a cached run (a sweep's,
+    a calibration's or an uncertainty draw's case, keyed by :func:`quenchsim.sweep.case_hash`) stays valid while
+    the code around the runs -- a calibration's statistics, a report's page -- changes."""
+    shipped = materials_dir()
+    return _fingerprint(tuple(f.resolve() for f in data_folders() if f != shipped), shipped.resolve(), runs_only=True)
+
+
+def _run_files(package: Path) -> list[Path]:
+    from quenchsim.dependencies import code_closure, package_data
+
+    closure = code_closure([f"import {m}" for m in RUN_MODULES], package.parent)
+    return sorted({*closure.modules.values(), *package_data(closure)})
+
+
+@functools.lru_cache(maxsize=8)
+def _fingerprint(user_folders: tuple[Path, ...], shipped: Path, runs_only: bool = False,
+                 package: Path = Path(__file__).resolve().parent) -> str:
     digest = hashlib.sha1()
-    folders = [(Path(__file__).resolve().parent, "quenchsim"), (shipped, "materials"),
-               *((f, f"data/{f.as_posix()}") for f in user_folders)]
+    folders = [(package, "quenchsim"), (shipped, "materials"), *((f, f"data/{f.as_posix()}") for f in user_folders)]
     for folder, name in folders:
-        for path in sorted(folder.rglob("*")):
+        paths = _run_files(package) if runs_only and folder == package else sorted(folder.rglob("*"))
+        for path in paths:
             if path.suffix in (".py", ".toml") and "__pycache__" not in path.parts:
                 digest.update(f"{name}/{path.relative_to(folder).as_posix()}".encode())
                 digest.update(behaviour_bytes(path))

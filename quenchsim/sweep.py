@@ -53,7 +53,7 @@ from tqdm import tqdm
 
 from quenchsim.case import case_from_dict
 from quenchsim.errors import InputError, require
-from quenchsim.fingerprint import code_fingerprint
+from quenchsim.fingerprint import run_fingerprint
 from quenchsim.results import RunWriter, files, read_summary
 
 RESULTS_CSV = "results.csv"
@@ -241,9 +241,9 @@ def flatten_summary(summary: dict[str, Any]) -> dict[str, Any]:
 
 def case_hash(raw_case: dict[str, Any], condition: str | None, overrides: dict[str, Any]) -> str:
     """A fingerprint of every input of one case (base table, condition, overrides) and of the code and data that
-    run it (:func:`quenchsim.fingerprint.code_fingerprint`: another quenchsim version, or an edited material
-    file, is rerun, not read from an earlier run's folder)."""
-    text = json.dumps([raw_case, condition, overrides, code_fingerprint()], sort_keys=True, default=str)
+    run it (:func:`quenchsim.fingerprint.run_fingerprint`: changed run code, or an edited material file, is rerun,
+    not read from an earlier run's folder; an edit of the code around the runs is not)."""
+    text = json.dumps([raw_case, condition, overrides, run_fingerprint()], sort_keys=True, default=str)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 

@@ -156,3 +156,26 @@ def test_behaviour_bytes_ignore_wording_and_type_hints_but_not_code(tmp_path):
     assert of("class A:\n    x: ClassVar[int] = 1\n") != cls
     (tmp_path / "m.toml").write_text("a = 1  # a comment in data counts\n")
     assert behaviour_bytes(tmp_path / "m.toml") == b"a = 1  # a comment in data counts\n"
+
+
+def test_a_cached_run_counts_by_the_code_a_run_executes(checkout):
+    """The run cache's fingerprint (sweep.case_hash) covers the run's import closure and the data: an edit of the
+    calibration's statistics leaves it (and every cached run) valid, an edit of the bath's code does not; the whole
+    package's fingerprint moves with both."""
+    from quenchsim.fingerprint import _fingerprint
+
+    def both() -> tuple[str, str]:
+        _fingerprint.cache_clear()
+        args = ((), checkout / "materials")
+        return (_fingerprint(*args, runs_only=True, package=checkout / "quenchsim"),
+                _fingerprint(*args, runs_only=False, package=checkout / "quenchsim"))
+
+    run0, code0 = both()
+    edit(checkout / "quenchsim" / "calibration" / "conflicts.py", "LOCAL_STARTS = 8", "LOCAL_STARTS = 9")
+    run1, code1 = both()
+    assert run1 == run0 and code1 != code0
+    edit(checkout / "quenchsim" / "bath" / "config.py", "MAX_ROTATION_RPM = 601.0", "MAX_ROTATION_RPM = 602.0")
+    run2, code2 = both()
+    assert run2 != run1 and code2 != code1
+    edit(checkout / "materials" / "baths" / "jet_bath.toml", "value = 0.3,", "value = 0.31,")
+    assert both()[0] != run2
