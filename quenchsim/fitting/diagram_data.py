@@ -37,7 +37,9 @@ Schema (every entry carries ``source`` and ``kind`` = "printed" (a number printe
     free = ["tau_ref_s"]
     tau_ref_s = { value = 1.0, source = "starting value" }
     calibration_tau_factor = { value = 2.0, source = "..." }   # optional: the material gets tau_ref x factor
-                             # (a declared calibration of the data's steel to the material's; residuals are the data's)
+                             # (a declared calibration of the data's steel to the material's; residuals are the data's);
+                             # with range = [lo, hi] (factors on the fitted tau_ref) the material's tau_ref_s carries that
+                             # prior (the fit's tau_ref x lo .. x hi), so `quenchsim calibrate` can move it
     undercooling_exponent = { value = 3, source = "Li et al. 1998" }  ...
     # n(T): n (+ n_per_K) or, in their place, piecewise linear through nodes (free = [..., "n_nodes"] frees every node):
     n_nodes_T_C = { value = [240, 350, 440], source = "why these nodes" }
@@ -182,6 +184,8 @@ class ReactionFitSpec:
     free: tuple[str, ...]
     tau_factor: float = 1.0
     tau_factor_source: str = ""
+    tau_factor_range: tuple[float, float] | None = None
+    """A prior on the factor (lo, hi): the material's tau_ref_s gets range = [lo, hi] x the fitted tau_ref."""
 
 
 @dataclass(frozen=True)
@@ -448,15 +452,24 @@ def _fit_spec(r: _Reader, reaction: str, table: Any) -> ReactionFitSpec:
             raise r.error(f"{where}.{key}", values[key], "a parameter the fit holds fixed needs { value = ..., source = ... }")
     if not values["T_ref_C"] < values["T_upper_C"]:
         raise r.error(f"{where}.T_ref_C", values["T_ref_C"], f"must lie below T_upper_C = {values['T_upper_C']:g}")
-    factor, factor_source = 1.0, ""
+    factor, factor_source, factor_range = 1.0, "", None
     if "calibration_tau_factor" in table:
         factor = r.number(table, "calibration_tau_factor", where, positive=True)
         spec = table["calibration_tau_factor"]
         factor_source = spec.get("source", "") if isinstance(spec, Mapping) else ""
         if not factor_source:
             raise r.error(f"{where}.calibration_tau_factor", factor, "a calibration factor needs { value = ..., source = ... }")
+        band = spec.get("range") if isinstance(spec, Mapping) else None
+        if band is not None:
+            ok = (isinstance(band, list) and len(band) == 2 and all(isinstance(x, (int, float)) and not isinstance(x, bool)
+                                                                    for x in band) and 0 < band[0] <= factor <= band[1])
+            if not ok:
+                raise r.error(f"{where}.calibration_tau_factor.range", band, f"must be [lo, hi] with 0 < lo <= {factor:g} "
+                              "(the factor) <= hi")
+            factor_range = (float(band[0]), float(band[1]))
     return ReactionFitSpec(reaction=reaction, T_ref_C=values.pop("T_ref_C"), values=values, sources=sources,
-                           free=tuple(free), tau_factor=factor, tau_factor_source=factor_source)
+                           free=tuple(free), tau_factor=factor, tau_factor_source=factor_source,
+                           tau_factor_range=factor_range)
 
 
 def load_diagram_data(path: str | Path) -> DiagramData:

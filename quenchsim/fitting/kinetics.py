@@ -348,10 +348,13 @@ def fitted_block(result: FitResult, data_file: str) -> str:
                 source = f"fitted to {data_file} ({what})"
             else:
                 source = spec.sources[p]
+            entry: dict[str, Any] = {}
+            if p == "tau_ref_s" and spec.tau_factor_range is not None:   # the factor's prior on the material's value
+                entry["range"] = [_fmt(cast(float, v) * f) for f in spec.tau_factor_range]
             if p == "tau_ref_s" and spec.tau_factor != 1.0:
                 source = (f"{_fmt(v)} s ({source}) x calibration factor {spec.tau_factor:g}: {spec.tau_factor_source}")
                 v = cast(float, v) * spec.tau_factor   # tau_ref_s is a single number
-            lines.append(f"{p} = " + _inline({"value": _fmt(v), "source": source}))
+            lines.append(f"{p} = " + _inline({"value": _fmt(v), **entry, "source": source}))
     sources = list(dict.fromkeys(x.source for x in result.residuals))
     lines += ["", "[kinetics.fit]", "data_file = " + _value(data_file), f"T_aust_C = {_value(data.T_aust_C)}",
               f"cost = {_value(_fmt(result.cost))}", "sources = ["]
