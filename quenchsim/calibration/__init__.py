@@ -5,9 +5,12 @@
     bands = propagate(case, "runs/c4", n=20, posterior="runs/cal")   # `quenchsim run ... --uncertainty 20`
 
 Modules: :mod:`~quenchsim.calibration.inputs` (input paths, priors, derived data files),
-:mod:`~quenchsim.calibration.spec` (the calibration file), :mod:`~quenchsim.calibration.runs` (cached runs),
-:mod:`~quenchsim.calibration.design` (design and sensitivity), :mod:`~quenchsim.calibration.surrogate`,
-:mod:`~quenchsim.calibration.posterior`, :mod:`~quenchsim.calibration.calibrate` (the command's pipeline),
+:mod:`~quenchsim.calibration.spec` (the calibration file), :mod:`~quenchsim.calibration.data` (the measured data of
+every kind -- values, bounds, probe orders, cooling curves, hardness traverses -- and their observables),
+:mod:`~quenchsim.calibration.runs` (cached runs), :mod:`~quenchsim.calibration.design` (design and sensitivity),
+:mod:`~quenchsim.calibration.surrogate`, :mod:`~quenchsim.calibration.likelihood` (measurement, surrogate error and
+model discrepancy), :mod:`~quenchsim.calibration.posterior`, :mod:`~quenchsim.calibration.conflicts` (which data
+pull which inputs, which conflict), :mod:`~quenchsim.calibration.calibrate` (the command's pipeline),
 :mod:`~quenchsim.calibration.propagate` (bands on a run).
 """
 

@@ -4,11 +4,14 @@
 
 =========================  ==========================================================================
 ``runs/``                  every full-chain run, one folder per run named by a hash of its inputs (cache)
-``design.json``            the points (unit cube and factors), their role and the measured quantities
+``design.json``            the points (unit cube and factors), their role and every observable's value there
 ``calibration.json``       screening (Morris on the runs, Sobol on the surrogate), the surrogate's held-back
-                           error, the posterior table with each input's identifiability, the posterior
-                           predictive check, the predictions with bands, the calibrated run, wall time
-``posterior.json``         the inputs and posterior samples (what ``quenchsim run --uncertainty`` propagates)
+                           error, the posterior table with each input's identifiability, the discrepancy's size
+                           per group, the posterior predictive check of every datum, which data pull which
+                           inputs where and which pairs conflict, the predictions with bands, the nominal and
+                           calibrated runs (and the cheap fidelity against the full one), wall time
+``posterior.json``         the inputs and posterior samples (what ``quenchsim run --uncertainty`` propagates),
+                           with the discrepancy groups' sizes
 ``calibration.md``         the same as a page
 ``corner.png``             the corner plot
 ``calibrated/NAME.toml``   the data files at the posterior median (new files; the priors are untouched)
@@ -29,21 +32,23 @@ from typing import Any
 
 import numpy as np
 
+from quenchsim.calibration.conflicts import conflicts, pulls
+from quenchsim.calibration.data import Observable, Term, default_group, read_term
 from quenchsim.calibration.design import latin_hypercube, morris_indices, morris_points, sobol_indices
 from quenchsim.calibration.inputs import derived_files
-from quenchsim.calibration.posterior import Posterior, posterior_table, predictive_check, sample_posterior
-from quenchsim.calibration.runs import RunRequest, quantity, request, run_requests
+from quenchsim.calibration.likelihood import Likelihood
+from quenchsim.calibration.posterior import (Posterior, discrepancy_table, posterior_table, predictive_check,
+                                             sample_posterior)
+from quenchsim.calibration.runs import RunRequest, request, run_requests
 from quenchsim.calibration.spec import CalibrationSpec
 from quenchsim.calibration.surrogate import Surrogate, fit_surrogate, holdout_check
 from quenchsim.errors import InputError
 
 POSTERIOR_SAMPLES_KEPT = 2000
 """Posterior samples written to posterior.json (thinned evenly from the chain)."""
-
-
 @dataclass
 class Design:
-    """The design's points by role (unit cube) and each target quantity's values there (NaN: run failed)."""
+    """The design's points by role (unit cube) and each observable's values there (NaN: run failed)."""
 
     points: dict[str, np.ndarray]
     values: dict[str, dict[str, np.ndarray]]
@@ -77,40 +82,67 @@ def design_points(spec: CalibrationSpec) -> dict[str, np.ndarray]:
             "holdout": latin_hypercube(d, opts["holdout_runs"], opts["seed"] + 1)}
 
 
+def all_observables(spec: CalibrationSpec) -> tuple[Observable, ...]:
+    return (*spec.observables, *spec.predicted)
+
+
 def target_labels(spec: CalibrationSpec) -> list[str]:
-    return [t.label for t in (*spec.measurements, *spec.predictions)]
+    return [o.label for o in all_observables(spec)]
 
 
-def run_design(spec: CalibrationSpec, out: Path, workers: int = 2, progress: bool = True,
-               max_runs: int | None = None) -> Design:
-    """Every run of the design (cached in ``out/runs``) and the target quantities of each point."""
-    points = design_points(spec)
-    cases = {key: spec.cases[key[0]].load(key[1]) for key in spec.runs()}
+def _values(spec: CalibrationSpec, read_run: Any) -> dict[str, float | None]:
+    """Every observable's value at one design point; ``read_run(case, condition)`` gives (summary, folder)."""
+    out: dict[str, float | None] = {}
+    for o in all_observables(spec):
+        def read(t: Term) -> float | None:
+            summary, folder = read_run(t.case, t.condition)
+            return read_term(summary, folder, t.path)
+        out[o.label] = o.model_value(read)
+    return out
+
+
+def run_points(spec: CalibrationSpec, points: dict[str, np.ndarray], runs_dir: Path, workers: int = 2,
+               progress: bool = True, max_runs: int | None = None, mesh: float | None = None,
+               desc: str = "runs") -> tuple[dict[str, list[dict[str, float | None]]], Any, int]:
+    """Run the full chain at the unit-cube ``points`` of each role for every (case, condition) the observables need
+    (element sizes x ``mesh``, default each case's design mesh) and return each point's observable values, the
+    runs' outcome and the number of distinct runs."""
+    cases = {key: spec.cases[key[0]].load(key[1], mesh=mesh) for key in spec.runs()}
     requests: dict[tuple[str, int, tuple[str, str | None]], RunRequest] = {}
     for role, block in points.items():
         for i, u in enumerate(block):
             factors = [inp.factor(x) for inp, x in zip(spec.inputs, u)]
             for key, case in cases.items():
                 requests[(role, i, key)] = request(case, spec.inputs, factors)
-    t0 = time.perf_counter()
-    outcome = run_requests(list(requests.values()), out / "runs", workers=workers, progress=progress,
-                           max_runs=max_runs, desc=f"calibrate {spec.name}")
-    values: dict[str, dict[str, np.ndarray]] = {}
+    outcome = run_requests(list(requests.values()), runs_dir, workers=workers, progress=progress,
+                           max_runs=max_runs, desc=desc)
+    values: dict[str, list[dict[str, float | None]]] = {}
     for role, block in points.items():
-        values[role] = {}
-        for target in (*spec.measurements, *spec.predictions):
-            column = []
-            for i in range(len(block)):
-                summary = outcome.summaries.get(requests[(role, i, (target.case, target.condition))].folder_name())
-                value = quantity(summary, target.quantity)
-                if summary is not None and value is None:
-                    raise InputError("quantity", target.quantity,
-                                     f"is not a number of summary.json in the runs of case {target.case!r}")
-                column.append(np.nan if value is None else value)
-            values[role][target.label] = np.array(column)
-    return Design(points=points, values=values, runs=len({r.folder_name() for r in requests.values()}),
-                  ran=outcome.ran, cached=outcome.cached, failed=outcome.failed, pending=outcome.pending,
-                  run_wall_s=time.perf_counter() - t0)
+        values[role] = []
+        for i in range(len(block)):
+            def read_run(case: str, condition: str | None, role: str = role, i: int = i) -> tuple[Any, Path]:
+                name = requests[(role, i, (case, condition))].folder_name()
+                return outcome.summaries.get(name), runs_dir / name
+            values[role].append(_values(spec, read_run))
+    return values, outcome, len({r.folder_name() for r in requests.values()})
+
+
+def run_design(spec: CalibrationSpec, out: Path, workers: int = 2, progress: bool = True,
+               max_runs: int | None = None) -> Design:
+    """Every run of the design (cached in ``out/runs``) and the observables' values at each point."""
+    points = design_points(spec)
+    t0 = time.perf_counter()
+    per_point, outcome, n_runs = run_points(spec, points, out / "runs", workers, progress, max_runs,
+                                            desc=f"calibrate {spec.name}")
+    values = {role: {label: np.array([np.nan if row[label] is None else row[label] for row in rows])
+                     for label in target_labels(spec)} for role, rows in per_point.items()}
+    if any(s is not None for s in outcome.summaries.values()):
+        for label in target_labels(spec):
+            if not any(np.any(np.isfinite(v[label])) for v in values.values()):
+                raise InputError("quantity", label, "is not a number in any finished run of the design (a summary.json "
+                                                    "path the runs do not write, or a temperature no run reaches)")
+    return Design(points=points, values=values, runs=n_runs, ran=outcome.ran, cached=outcome.cached,
+                  failed=outcome.failed, pending=outcome.pending, run_wall_s=time.perf_counter() - t0)
 
 
 def fit_design(spec: CalibrationSpec, design: Design) -> tuple[Surrogate, dict[str, dict[str, float]]]:
@@ -124,35 +156,39 @@ def fit_design(spec: CalibrationSpec, design: Design) -> tuple[Surrogate, dict[s
     return surrogate, holdout_check(surrogate, u_h, y_h) if len(u_h) else {}
 
 
-def observations(spec: CalibrationSpec) -> tuple[np.ndarray, np.ndarray]:
-    return (np.array([m.value for m in spec.measurements]), np.array([m.uncertainty for m in spec.measurements]))
+def likelihood(spec: CalibrationSpec, surrogate: Surrogate, observed: Sequence[float] | None = None) -> Likelihood:
+    """The likelihood of the measured observables (``observed``: other values in place of the measured ones, for
+    a synthetic problem; measured values only)."""
+    obs = spec.observables
+    if observed is not None:
+        obs = tuple(Observable(o.label, o.terms, o.relation, value=float(v), sd=o.sd, group=o.group)
+                    for o, v in zip(obs, observed))
+    return Likelihood(surrogate, obs, tuple(g.name for g in spec.discrepancy))
 
 
-def measurement_surrogate(spec: CalibrationSpec, surrogate: Surrogate) -> Surrogate:
-    """The surrogate restricted to the measured quantities (the likelihood's)."""
-    return Surrogate(models={m.label: surrogate.models[m.label] for m in spec.measurements}, n_train=surrogate.n_train)
-
-
-def infer(spec: CalibrationSpec, surrogate: Surrogate, observed: np.ndarray | None = None, seed: int | None = None,
+def infer(spec: CalibrationSpec, surrogate: Surrogate, observed: Sequence[float] | None = None, seed: int | None = None,
           steps: int | None = None) -> Posterior:
-    """The posterior of the inputs given the measurements (or ``observed`` values in their place)."""
-    obs, sigma = observations(spec)
+    """The posterior of the inputs (and discrepancy sizes) given the measurements (or ``observed`` in their place)."""
     opts = spec.sampler
-    return sample_posterior(measurement_surrogate(spec, surrogate), obs if observed is None else observed, sigma,
-                            len(spec.inputs), walkers=opts["walkers"], steps=steps or opts["steps"],
-                            burn=min(opts["burn"], (steps or opts["steps"]) // 2),
-                            seed=spec.design["seed"] if seed is None else seed)
+    n = steps or opts["steps"]
+    return sample_posterior(likelihood(spec, surrogate, observed), len(spec.inputs),
+                            [g.scale for g in spec.discrepancy], walkers=opts["walkers"], steps=n,
+                            burn=min(opts["burn"], n // 2), seed=spec.design["seed"] if seed is None else seed)
 
 
 def prediction_bands(spec: CalibrationSpec, surrogate: Surrogate, posterior: Posterior,
                      seed: int = 0) -> dict[str, dict[str, float]]:
-    """Median and 5-95 % of each prediction over the posterior, the surrogate's own error included."""
+    """Median and 5-95 % of each prediction over the posterior, the surrogate's own error included, and the model
+    discrepancy of the prediction's group (its quantity's table) when that group has one."""
     rng = np.random.default_rng(seed)
     out = {}
     for p in spec.predictions:
         model = surrogate.models[p.label]
         mean, sd = model.predict(posterior.u, return_std=True)
         draws = mean + sd * rng.standard_normal(len(mean))
+        group = default_group(p.quantity)
+        if posterior.discrepancy_sd is not None and group in posterior.groups:
+            draws = draws + posterior.discrepancy_sd[:, posterior.groups.index(group)] * rng.standard_normal(len(mean))
         p5, p50, p95 = np.quantile(draws, [0.05, 0.5, 0.95])
         out[p.label] = {"median": float(p50), "p5": float(p5), "p95": float(p95)}
     return out
@@ -160,12 +196,37 @@ def prediction_bands(spec: CalibrationSpec, surrogate: Surrogate, posterior: Pos
 
 def _screening(spec: CalibrationSpec, design: Design, surrogate: Surrogate) -> dict[str, Any]:
     out: dict[str, Any] = {}
-    for m in spec.measurements:
-        morris = morris_indices(design.points["screening"], design.values["screening"][m.label])
-        model = surrogate.models[m.label]
+    for o in spec.observables:
+        morris = morris_indices(design.points["screening"], design.values["screening"][o.label])
+        model = surrogate.models[o.label]
         sobol = sobol_indices(lambda u: model.predict(u), len(spec.inputs), spec.design["seed"])
-        out[m.label] = {"inputs": [inp.path for inp in spec.inputs], "morris": morris, "sobol_on_surrogate": sobol}
+        out[o.label] = {"inputs": [inp.path for inp in spec.inputs], "morris": morris, "sobol_on_surrogate": sobol}
     return out
+
+
+def confirm_runs(spec: CalibrationSpec, medians: Sequence[float], out: Path,
+                 progress: bool) -> tuple[dict[str, Any], int]:
+    """The full chain at the nominal inputs and at the posterior median, on the design's mesh and (where a case
+    names one) its ``confirm_mesh``: every observable's value by fidelity and point (the fidelity's agreement), and
+    how many runs that took beyond the design's."""
+    points = {"nominal": np.array([[inp.unit(1.0) for inp in spec.inputs]]),
+              "calibrated": np.array([[inp.unit(f) for inp, f in zip(spec.inputs, medians)]])}
+    meshes: dict[str, float | None] = {"design": None}
+    confirm = {c.confirm_mesh for c in spec.cases.values() if c.confirm_mesh is not None}
+    if confirm:
+        if len(confirm) > 1:
+            raise InputError("cases.*.confirm_mesh", sorted(confirm), "must be the same for every case")
+        meshes["confirm"] = confirm.pop()
+    table: dict[str, Any] = {}
+    ran = 0
+    for fidelity, mesh in meshes.items():
+        values, outcome, _ = run_points(spec, points, out / "runs", workers=0, progress=progress, mesh=mesh,
+                                        desc=f"{fidelity} runs")
+        table[fidelity] = {role: rows[0] for role, rows in values.items()}
+        table[fidelity]["failed"] = outcome.failed
+        table[fidelity]["mesh"] = mesh
+        ran += outcome.ran + outcome.cached
+    return table, ran - len(spec.runs())   # the nominal design run is the design's own
 
 
 def calibrate(spec: CalibrationSpec, out: str | Path, workers: int = 2, progress: bool = True,
@@ -185,33 +246,46 @@ def calibrate(spec: CalibrationSpec, out: str | Path, workers: int = 2, progress
         return result
     surrogate, holdout = fit_design(spec, design)
     posterior = infer(spec, surrogate)
+    lk = likelihood(spec, surrogate)
     factors = posterior.factors(spec.inputs)
     table = posterior_table(posterior, spec.inputs)
-    obs, sigma = observations(spec)
-    check = predictive_check(measurement_surrogate(spec, surrogate), posterior, [m.label for m in spec.measurements],
-                             obs, sigma)
     medians = [row["factor_median"] for row in table]
     calibrated = derived_files(list(spec.inputs), medians, out / "calibrated",
                                note=f"calibrated by quenchsim calibrate ({spec.name}, posterior median)")
-    calibrated_run = _calibrated_run(spec, medians, out, progress)
+    confirmed, confirm_count = confirm_runs(spec, medians, out, progress)
     from quenchsim.calibration.plots import corner_plot
 
     corner_plot(factors, spec.inputs, out / "corner.png")
-    keep = posterior.u[np.linspace(0, len(posterior.u) - 1, min(POSTERIOR_SAMPLES_KEPT, len(posterior.u))).astype(int)]
-    _write_json(out / "posterior.json", {"name": spec.name, "inputs": [inp.path for inp in spec.inputs],
-                                         "factor_bounds": [list(inp.factor_bounds) for inp in spec.inputs],
-                                         "u": keep.tolist(),
-                                         "factors": [[inp.factor(x) for inp, x in zip(spec.inputs, row)] for row in keep]})
+    keep = np.linspace(0, len(posterior.u) - 1, min(POSTERIOR_SAMPLES_KEPT, len(posterior.u))).astype(int)
+    _write_json(out / "posterior.json", {
+        "name": spec.name, "inputs": [inp.path for inp in spec.inputs],
+        "factor_bounds": [list(inp.factor_bounds) for inp in spec.inputs], "u": posterior.u[keep].tolist(),
+        "factors": [[inp.factor(x) for inp, x in zip(spec.inputs, row)] for row in posterior.u[keep]],
+        "discrepancy_groups": list(posterior.groups),
+        "discrepancy_sd": None if posterior.discrepancy_sd is None else posterior.discrepancy_sd[keep].tolist()})
+    sampler = spec.sampler
     result.update({
         "status": "ok", "inputs": [inp.path for inp in spec.inputs],
+        "data": [{"label": m.label, "kind": m.kind, "group": m.group, "source": m.source,
+                  "observables": [o.label for o in m.observables]} for m in spec.measurements],
         "screening": _screening(spec, design, surrogate),
         "surrogate": {"training_runs": surrogate.n_train, "holdout": holdout},
-        "posterior": table, "sampler": {"acceptance": posterior.acceptance, "autocorr_steps": posterior.autocorr_steps,
-                                        "samples": len(posterior.u), **spec.sampler},
-        "predictive_check": check, "predictions": prediction_bands(spec, surrogate, posterior),
-        "calibrated_files": calibrated, "calibrated_run": calibrated_run,
+        "posterior": table,
+        "discrepancy": discrepancy_table(posterior, [g.scale for g in spec.discrepancy],
+                                         [g.unit for g in spec.discrepancy]),
+        "discrepancy_priors": [{"group": g.name, "scale": g.scale, "unit": g.unit, "reason": g.reason}
+                               for g in spec.discrepancy],
+        "sampler": {"acceptance": posterior.acceptance, "autocorr_steps": posterior.autocorr_steps,
+                    "samples": len(posterior.u), **sampler},
+        "predictive_check": predictive_check(lk, posterior),
+        "pulls": pulls(lk, spec.measurements, spec.inputs, walkers=sampler["walkers"],
+                       steps=max(300, sampler["steps"] // 2), seed=spec.design["seed"]),
+        "conflicts": conflicts(lk, spec.measurements, len(spec.inputs), seed=spec.design["seed"]),
+        "predictions": prediction_bands(spec, surrogate, posterior),
+        "calibrated_files": calibrated, "confirm": confirmed,
+        "calibrated_run": _calibrated_rows(spec, confirmed),
         "wall_time_s": time.perf_counter() - t0, "run_wall_time_s": design.run_wall_s,
-        "full_chain_runs": design.runs + len(calibrated_run)})
+        "full_chain_runs": design.runs + confirm_count})
     _write_json(out / "calibration.json", result)
     from quenchsim.calibration.page import calibration_page
 
@@ -219,15 +293,24 @@ def calibrate(spec: CalibrationSpec, out: str | Path, workers: int = 2, progress
     return result
 
 
-def _calibrated_run(spec: CalibrationSpec, factors: Sequence[float], out: Path,
-                    progress: bool) -> dict[str, dict[str, float | None]]:
-    """The full chain at the posterior median for every measured case: the surrogate's answer checked."""
-    keys = list(dict.fromkeys((m.case, m.condition) for m in spec.measurements))
-    reqs = {key: request(spec.cases[key[0]].load(key[1]), spec.inputs, factors) for key in keys}
-    done = run_requests(list(reqs.values()), out / "runs", workers=0, progress=progress,
-                        desc="calibrated run")
-    return {m.label: {"full_chain": quantity(done.summaries.get(reqs[(m.case, m.condition)].folder_name()), m.quantity),
-                      "measured": m.value, "uncertainty": m.uncertainty} for m in spec.measurements}
+def _calibrated_rows(spec: CalibrationSpec, confirmed: dict[str, Any]) -> dict[str, dict[str, Any]]:
+    """Per measured observable: the full chain at the posterior median (the finest fidelity run) against the datum."""
+    best = confirmed.get("confirm", confirmed["design"])
+    rows = {}
+    for o in spec.observables:
+        value = best["calibrated"].get(o.label)
+        rows[o.label] = {"full_chain": value, "measured": o.value, "lower": o.lower, "upper": o.upper,
+                         "uncertainty": o.sd, "target": o.target_text(),
+                         "met": None if value is None else _meets(o, value)}
+    return rows
+
+
+def _meets(o: Observable, value: float) -> bool:
+    """Whether a value meets an observable's datum within two of its standard deviations."""
+    if o.value is not None:
+        return abs(value - o.value) <= 2.0 * o.sd
+    return ((o.lower is None or value >= o.lower - 2.0 * o.sd)
+            and (o.upper is None or value <= o.upper + 2.0 * o.sd))
 
 
 def _write_design(spec: CalibrationSpec, design: Design, path: Path) -> None:

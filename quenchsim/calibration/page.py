@@ -1,5 +1,6 @@
-"""The calibration as a Markdown page: posterior table with identifiability, screening, surrogate error,
-predictive check, predictions, calibrated run."""
+"""The calibration as a Markdown page: the data, the posterior with identifiability, the discrepancy, each datum
+against the posterior and the calibrated full chain, the fidelities' agreement, which data pull which inputs where,
+the conflicting pairs, the predictions, the surrogate's error and the screening."""
 
 from __future__ import annotations
 
@@ -10,6 +11,15 @@ from quenchsim.calibration.spec import CalibrationSpec
 
 def _g(x: Any, fmt: str = ".4g") -> str:
     return "-" if x is None else format(x, fmt)
+
+
+def _short(path: str) -> str:
+    """An input path without its kind and file (``material.SUJ3.mechanics.trip.K_1_Pa...`` -> ``trip.K_1_Pa...``)."""
+    parts = path.split(".")
+    keys = parts[2:]
+    if keys and keys[0] == "mechanics":
+        keys = keys[1:]
+    return ".".join(k for k in keys if k != "per_phase")
 
 
 def posterior_rows(result: dict[str, Any]) -> list[str]:
@@ -24,40 +34,110 @@ def posterior_rows(result: dict[str, Any]) -> list[str]:
     return rows
 
 
+def data_rows(result: dict[str, Any]) -> list[str]:
+    rows = ["| datum | kind | observables | discrepancy group | source |", "|---|---|---|---|---|"]
+    for d in result["data"]:
+        rows.append(f"| {d['label']} | {d['kind']} | {len(d['observables'])} | {d['group'] or '-'} | {d['source']} |")
+    return rows
+
+
+def discrepancy_rows(result: dict[str, Any]) -> list[str]:
+    if not result.get("discrepancy"):
+        return ["No model-discrepancy term (the file declares no [discrepancy] groups): a datum the model cannot meet "
+                "shows as a miss below and as an input at the edge of its prior."]
+    reasons = {g["group"]: g["reason"] for g in result.get("discrepancy_priors", [])}
+    rows = ["| group | prior: half-normal scale | posterior sd median | 5-95 % | median / prior median | why this prior |",
+            "|---|---|---|---|---|---|"]
+    for g in result["discrepancy"]:
+        u = f" {g['unit']}" if g["unit"] else ""
+        rows.append(f"| {g['group']} | {g['prior_scale']:.3g}{u} | {g['median']:.3g}{u} | {g['p5']:.3g}-{g['p95']:.3g} | "
+                    f"{g['median_over_prior_median']:.2f} | {reasons.get(g['group'], '')} |")
+    return rows
+
+
+def check_rows(result: dict[str, Any]) -> list[str]:
+    rows = ["| observable | measured | posterior, model alone: median (5-95 %) | z | full chain at the posterior "
+            "median | met (2 sd) |", "|---|---|---|---|---|---|"]
+    for row in result["predictive_check"]:
+        full = result["calibrated_run"][row["quantity"]]
+        met = "-" if full["met"] is None else ("yes" if full["met"] else "**no**")
+        rows.append(f"| {row['quantity']} | {row['target']} | {row['posterior_median']:.4g} ({row['posterior_5pct']:.4g} "
+                    f"to {row['posterior_95pct']:.4g}) | {row['z']:+.1f} | {_g(full['full_chain'])} | {met} |")
+    return rows
+
+
+def fidelity_rows(result: dict[str, Any]) -> list[str]:
+    confirm = result["confirm"]
+    if "confirm" not in confirm:
+        return ["The nominal and calibrated points were run on the design's mesh only (no confirm_mesh)."]
+    d, c = confirm["design"], confirm["confirm"]
+    rows = [f"Element sizes x{_g(d['mesh'] or 'design')} (design) against x{c['mesh']:g} (full):", "",
+            "| observable | nominal: design | nominal: full | calibrated: design | calibrated: full |",
+            "|---|---|---|---|---|"]
+    for label in result["calibrated_run"]:
+        rows.append(f"| {label} | {_g(d['nominal'].get(label))} | {_g(c['nominal'].get(label))} | "
+                    f"{_g(d['calibrated'].get(label))} | {_g(c['calibrated'].get(label))} |")
+    return rows
+
+
+def pull_rows(result: dict[str, Any]) -> list[str]:
+    inputs = result["inputs"]
+    rows = ["Each datum alone (no discrepancy): the posterior median factor of each input and, in brackets, its 90 % "
+            "width over the prior's (below 0.5: that datum pins the input); the smallest misfit it reaches inside the "
+            "priors (chi-square; met alone when <= 3.84 per observable).", "",
+            "| datum | " + " | ".join(f"`{_short(p)}`" for p in inputs) + " | min misfit | met alone |",
+            "|---|" + "---|" * len(inputs) + "---|---|"]
+    for p in result["pulls"]:
+        cells = [f"{x['factor_median']:.3g} ({x['width_ratio']:.2f})" for x in p["inputs"]]
+        rows.append(f"| {p['datum']} | " + " | ".join(cells) + f" | {p['min_misfit']:.2f} | "
+                    f"{'yes' if p['met_alone'] else '**no**'} |")
+    return rows
+
+
+def conflict_rows(result: dict[str, Any]) -> list[str]:
+    pairs = result["conflicts"]
+    rows = ["Parameter goodness-of-fit (Maltoni & Schwetz 2003): chi2_PG = min chi2(both) - min chi2(a) - min chi2(b) "
+            "over the prior box; above 3.84 no input set meets the two together as well as each alone.", "",
+            "| datum a | datum b | min chi2 a | min chi2 b | min chi2 both | chi2_PG | conflict |",
+            "|---|---|---|---|---|---|---|"]
+    for c in sorted(pairs, key=lambda c: -c["chi2_pg"]):
+        rows.append(f"| {c['a']} | {c['b']} | {c['chi2_a']:.2f} | {c['chi2_b']:.2f} | {c['chi2_both']:.2f} | "
+                    f"{c['chi2_pg']:.2f} | {'**yes**' if c['conflict'] else 'no'} |")
+    return rows
+
+
 def calibration_page(spec: CalibrationSpec, result: dict[str, Any]) -> str:
     runs = result["runs"]
+    s = result["sampler"]
     md = [f"# Calibration {spec.name}", "", spec.description, "",
           f"{result['full_chain_runs']} full-chain runs ({runs['ran_now']} run now, {runs['cached']} from the cache, "
-          f"{len(runs['failed'])} failed), wall time {result['wall_time_s']:.0f} s.", "", "## Posterior", "",
-          *posterior_rows(result), "",
-          f"emcee: {result['sampler']['walkers']} walkers x {result['sampler']['steps']} steps (burn-in "
-          f"{result['sampler']['burn']}), acceptance {result['sampler']['acceptance']:.2f}, autocorrelation "
-          f"{_g(result['sampler']['autocorr_steps'], '.0f')} steps. Corner plot: corner.png.", "",
-          "## Measurements: posterior prediction and full chain at the posterior median", "",
-          "| measurement | measured +- sd | posterior median (5-95 %) | z | full chain, calibrated | reached |",
-          "|---|---|---|---|---|---|"]
-    for row in result["predictive_check"]:
-        full = result["calibrated_run"][row["quantity"]]["full_chain"]
-        md.append(f"| {row['quantity']} | {row['measured']:.4g} +- {row['uncertainty']:.3g} | {row['posterior_median']:.4g} "
-                  f"({row['posterior_5pct']:.4g} to {row['posterior_95pct']:.4g}) | {row['z']:+.1f} | {_g(full)} | "
-                  f"{'yes' if row['reached'] else '**no**: the priors cannot explain it'} |")
+          f"{len(runs['failed'])} failed), wall time {result['wall_time_s']:.0f} s.", "", "## Data", "",
+          *data_rows(result), "", "## Posterior", "", *posterior_rows(result), "",
+          f"emcee: {s['walkers']} walkers x {s['steps']} steps (burn-in {s['burn']}), acceptance {s['acceptance']:.2f}, "
+          f"autocorrelation {_g(s['autocorr_steps'], '.0f')} steps. Corner plot: corner.png.", "",
+          "## Model discrepancy", "", *discrepancy_rows(result), "",
+          "## Each datum: posterior prediction and full chain at the posterior median", "", *check_rows(result), "",
+          "## Cheap against full fidelity", "", *fidelity_rows(result), "",
+          "## Which data pull which inputs where", "", *pull_rows(result), "",
+          "## Which data conflict", "", *conflict_rows(result)]
     if result["predictions"]:
-        md += ["", "## Predictions (surrogate over the posterior)", "", "| quantity | median | 5-95 % |", "|---|---|---|"]
+        md += ["", "## Predictions (surrogate over the posterior, with the discrepancy of their group)", "",
+               "| quantity | median | 5-95 % |", "|---|---|---|"]
         md += [f"| {k} | {v['median']:.4g} | {v['p5']:.4g} to {v['p95']:.4g} |" for k, v in result["predictions"].items()]
-    md += ["", "## Surrogate error on held-back runs", "",
-           "| quantity | runs | RMS error | max error | mean stated sd | inside its own 90 % band |", "|---|---|---|---|---|---|"]
+    md += ["", "## Surrogate error on held-back runs", "", "| observable | runs | RMS error | max error | mean stated sd | inside its own 90 % band |",
+           "|---|---|---|---|---|---|"]
     for k, h in result["surrogate"]["holdout"].items():
         md.append(f"| {k} | {h['n']} | {h['rms_error']:.3g} | {h['max_abs_error']:.3g} | {h['mean_stated_sd']:.3g} | "
                   f"{h['inside_own_90pct_band']:.2f} |")
-    md += ["", "## Sensitivity (which input matters for which measurement)", "",
-           "Morris mu* on the full-chain runs (quantity's unit over each input's whole prior range); Sobol first-order / "
-           "total indices on the surrogate.", "", "| measurement | input | Morris mu* | Sobol S1 | Sobol ST |",
+    md += ["", "## Sensitivity (which input matters for which observable)", "",
+           "Morris mu* on the full-chain runs (observable's unit over each input's whole prior range); Sobol first-order "
+           "/ total indices on the surrogate.", "", "| observable | input | Morris mu* | Sobol S1 | Sobol ST |",
            "|---|---|---|---|---|"]
-    for k, s in result["screening"].items():
-        for j, name in enumerate(s["inputs"]):
-            mu = s["morris"]["mu_star"][j] if s["morris"] else None
-            md.append(f"| {k} | `{name}` | {_g(mu, '.3g')} | {s['sobol_on_surrogate']['S1'][j]:.2f} | "
-                      f"{s['sobol_on_surrogate']['ST'][j]:.2f} |")
+    for k, sc in result["screening"].items():
+        for j, name in enumerate(sc["inputs"]):
+            mu = sc["morris"]["mu_star"][j] if sc["morris"] else None
+            md.append(f"| {k} | `{_short(name)}` | {_g(mu, '.3g')} | {sc['sobol_on_surrogate']['S1'][j]:.2f} | "
+                      f"{sc['sobol_on_surrogate']['ST'][j]:.2f} |")
     md += ["", "Calibrated data files (new files, the priors untouched): "
            + ", ".join(f"`{v}`" for v in result["calibrated_files"].values()), ""]
     return "\n".join(md)

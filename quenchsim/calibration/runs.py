@@ -19,10 +19,13 @@ from typing import Any
 
 from tqdm import tqdm
 
+from quenchsim.calibration.data import quantity
 from quenchsim.calibration.inputs import FreeInput, derived_files, used_by
 from quenchsim.case import Case
 from quenchsim.results import files
 from quenchsim.sweep import case_hash, finished, run_on_dask, run_point
+
+__all__ = ["DesignOutcome", "RunRequest", "quantity", "request", "run_requests"]
 
 
 @dataclass(frozen=True)
@@ -112,12 +115,3 @@ def run_requests(requests: Sequence[RunRequest], runs_dir: Path, workers: int = 
         summaries[name] = None
     return DesignOutcome(summaries=summaries, ran=len(todo), cached=cached, failed=failed, pending=pending)
 
-
-def quantity(summary: Mapping[str, Any] | None, dotted: str) -> float | None:
-    """A number of summary.json by its dotted path, None when absent or not a number."""
-    node: Any = summary
-    for key in dotted.split("."):
-        if not isinstance(node, Mapping) or key not in node:
-            return None
-        node = node[key]
-    return float(node) if isinstance(node, (int, float)) and not isinstance(node, bool) else None

@@ -4,20 +4,26 @@
 
     name = "ring_a_condition_1"
     inputs = ["material.SUJ3.mechanics.plastic.yield_Pa.per_phase.austenite",   # each needs a prior in
-              "material.SUJ3.mechanics.trip.K_1_Pa.per_phase.martensite"]       # its data file (inputs.py)
+              "bath.jet_bath.htc_factor.od"]                                    # its data file (inputs.py)
 
     [cases.ring_a]                       # a label for the measurements
     file = "../cases/crb_outer_ring.toml"   # relative to this file
-    mesh = 2.0                           # optional: element sizes x this for every run (Case.refined)
+    mesh = 2.0                           # optional: element sizes x this for every design run (Case.refined)
+    confirm_mesh = 1.0                   # optional: the nominal and the calibrated run again at this mesh (the
+                                         # design's cheap fidelity against the full one, per observable)
     set = { "quench.time_s" = 900.0 }    # optional: case overrides for every run
 
-    [[measurements]]
-    case = "ring_a"
+    [[measurements]]                     # one datum; kinds value (shown), bound, order, curve, traverse:
+    case = "ring_a"                      # quenchsim.calibration.data
     condition = "1"                      # a condition of that case file (omit for a case without conditions)
     quantity = "dimensions_mm.change.id" # a dotted path of summary.json
     value = -0.40
     uncertainty = 0.05                   # one standard deviation, in the quantity's unit (> 0)
+    group = "dimensions"                 # optional: its model-discrepancy group (default: the quantity's table)
     source = "reference report, Table 3"
+
+    [discrepancy]                        # optional: a model discrepancy per group (quenchsim.calibration.likelihood)
+    dimensions = { scale = 0.15, unit = "mm", reason = "..." }   # half-normal prior of that scale on its sd
 
     [[predictions]]                      # optional: quantities of other cases/conditions to predict with a
     case = "ring_a"                      # band from the same design (the surrogate is trained on them too)
@@ -46,17 +52,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from quenchsim.calibration.data import (Measurement, Observable, Prediction, check_quantity,
+                                        parse_measurement)
 from quenchsim.calibration.inputs import FreeInput, free_input, used_by
 from quenchsim.case import Case, load_case
 from quenchsim.errors import InputError, require
 
-MEASURABLE_TABLES = ("probes", "hardness", "phases_final", "dimensions_mm", "distortion_budget_mm",
-                     "residual_stress_MPa")
-"""The tables of summary.json that hold measurable results (probe times, hardness depths, phase fractions,
-dimensions, residual stresses). A path into them is checked again against the first finished run."""
 DESIGN_DEFAULTS = {"screening_trajectories": 4, "training_runs": 16, "holdout_runs": 6, "seed": 19}
 SAMPLER_DEFAULTS = {"walkers": 32, "steps": 3000, "burn": 1000}
-TOP_KEYS = {"name", "description", "inputs", "cases", "measurements", "predictions", "design", "sampler"}
+TOP_KEYS = {"name", "description", "inputs", "cases", "measurements", "predictions", "discrepancy", "design", "sampler"}
+DISCREPANCY_KEYS = ("scale", "unit", "reason")
 
 
 @dataclass(frozen=True)
@@ -67,34 +72,25 @@ class CaseSpec:
     path: Path
     mesh: float
     overrides: Mapping[str, Any]
+    confirm_mesh: float | None = None
 
-    def load(self, condition: str | None, extra: Mapping[str, Any] | None = None) -> Case:
-        """The checked case at ``condition``, refined, with the fixed and ``extra`` overrides."""
+    def load(self, condition: str | None, extra: Mapping[str, Any] | None = None, mesh: float | None = None) -> Case:
+        """The checked case at ``condition``, refined (by ``mesh``, default the design's), with the fixed and
+        ``extra`` overrides."""
+        factor = self.mesh if mesh is None else mesh
         case = load_case(self.path, condition, dict(self.overrides))
-        case = case.refined(mesh=self.mesh) if self.mesh != 1.0 else case
+        case = case.refined(mesh=factor) if factor != 1.0 else case
         return case.with_overrides(dict(extra)) if extra else case
 
 
 @dataclass(frozen=True)
-class Prediction:
-    """A quantity of summary.json (dotted path) of one case and condition."""
+class DiscrepancyGroup:
+    """A model-discrepancy group: the half-normal prior scale of its standard deviation, in ``unit``, and why."""
 
-    case: str
-    condition: str | None
-    quantity: str
-
-    @property
-    def label(self) -> str:
-        return f"{self.case}/{self.condition or '-'}:{self.quantity}"
-
-
-@dataclass(frozen=True)
-class Measurement(Prediction):
-    """A measured quantity: its value, standard deviation and source."""
-
-    value: float
-    uncertainty: float
-    source: str
+    name: str
+    scale: float
+    unit: str
+    reason: str
 
 
 @dataclass(frozen=True)
@@ -106,20 +102,49 @@ class CalibrationSpec:
     cases: Mapping[str, CaseSpec]
     measurements: tuple[Measurement, ...]
     predictions: tuple[Prediction, ...] = ()
+    discrepancy: tuple[DiscrepancyGroup, ...] = ()
     design: Mapping[str, int] = field(default_factory=lambda: dict(DESIGN_DEFAULTS))
     sampler: Mapping[str, int] = field(default_factory=lambda: dict(SAMPLER_DEFAULTS))
 
+    @property
+    def observables(self) -> tuple[Observable, ...]:
+        """Every measured observable, datum by datum (the likelihood's)."""
+        return tuple(o for m in self.measurements for o in m.observables)
+
+    @property
+    def predicted(self) -> tuple[Observable, ...]:
+        return tuple(p.observable() for p in self.predictions)
+
     def runs(self) -> list[tuple[str, str | None]]:
-        """The (case label, condition) pairs the measurements and predictions need, in order of first use."""
+        """The (case label, condition) pairs the observables and predictions need, in order of first use."""
         out: list[tuple[str, str | None]] = []
-        for m in (*self.measurements, *self.predictions):
-            if (m.case, m.condition) not in out:
-                out.append((m.case, m.condition))
+        for o in (*self.observables, *self.predicted):
+            for t in o.terms:
+                if (t.case, t.condition) not in out:
+                    out.append((t.case, t.condition))
         return out
 
 
 def _number(value: Any) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _discrepancy(raw: Any, groups: set[str]) -> tuple[DiscrepancyGroup, ...]:
+    require(isinstance(raw, Mapping), "discrepancy", raw, "must be a table of groups {scale, unit, reason}")
+    out = []
+    for name, spec in raw.items():
+        where = f"discrepancy.{name}"
+        require(isinstance(spec, Mapping), where, spec, "must be a table {scale, unit, reason}")
+        unknown = sorted(set(spec) - set(DISCREPANCY_KEYS))
+        require(not unknown, where, unknown, f"allowed keys: {', '.join(DISCREPANCY_KEYS)}")
+        require(name in groups, where, name, f"no measurement is in this group; the groups: {', '.join(sorted(groups))}")
+        scale = spec.get("scale")
+        require(_number(scale) and scale > 0, f"{where}.scale", scale, "must be a number > 0 (the half-normal prior's "
+                "scale of the group's discrepancy, in the group's unit)")
+        require(isinstance(spec.get("reason"), str) and spec["reason"].strip(), f"{where}.reason", spec.get("reason"),
+                "required: why the prior has that scale")
+        out.append(DiscrepancyGroup(str(name), float(scale), str(spec.get("unit", "")), spec["reason"]))
+    return tuple(out)
 
 
 def _options(raw: Any, defaults: Mapping[str, int], table: str, minimum: Mapping[str, int]) -> dict[str, int]:
@@ -136,43 +161,32 @@ def _options(raw: Any, defaults: Mapping[str, int], table: str, minimum: Mapping
 def _case_spec(label: str, raw: Any, base_dir: Path) -> CaseSpec:
     where = f"cases.{label}"
     require(isinstance(raw, Mapping), where, raw, "must be a table with file = CASE.toml")
-    unknown = set(raw) - {"file", "mesh", "set"}
-    require(not unknown, where, sorted(unknown), "allowed keys: file, mesh, set")
+    unknown = set(raw) - {"file", "mesh", "confirm_mesh", "set"}
+    require(not unknown, where, sorted(unknown), "allowed keys: file, mesh, confirm_mesh, set")
     require(isinstance(raw.get("file"), str), f"{where}.file", raw.get("file"), "required: a case file (relative to CAL.toml)")
     path = (base_dir / raw["file"]).resolve()
     require(path.is_file(), f"{where}.file", raw["file"], f"file not found ({path})")
     mesh = raw.get("mesh", 1.0)
     require(_number(mesh) and mesh > 0, f"{where}.mesh", mesh, "must be a number > 0 (element sizes x this)")
+    confirm = raw.get("confirm_mesh")
+    require(confirm is None or (_number(confirm) and confirm > 0), f"{where}.confirm_mesh", confirm,
+            "must be a number > 0 (element sizes x this for the nominal and calibrated runs)")
     overrides = raw.get("set", {})
     require(isinstance(overrides, Mapping), f"{where}.set", overrides, "must be a table of dotted case fields")
-    return CaseSpec(label=label, path=path, mesh=float(mesh), overrides=dict(overrides))
+    return CaseSpec(label=label, path=path, mesh=float(mesh), overrides=dict(overrides),
+                    confirm_mesh=None if confirm is None else float(confirm))
 
 
-def _prediction(where: str, raw: Any, cases: Mapping[str, CaseSpec], keys: tuple[str, ...]) -> Prediction:
+def _prediction(where: str, raw: Any, cases: Mapping[str, CaseSpec]) -> Prediction:
     require(isinstance(raw, Mapping), where, raw, "must be a table")
+    keys = ("case", "condition", "quantity")
     unknown = set(raw) - set(keys)
     require(not unknown, where, sorted(unknown), f"allowed keys: {', '.join(keys)}")
     require(raw.get("case") in cases, f"{where}.case", raw.get("case"),
             f"unknown case; the [cases] of this file: {', '.join(cases) or 'none'}")
-    quantity = raw.get("quantity")
-    require(isinstance(quantity, str) and quantity.split(".")[0] in MEASURABLE_TABLES and "." in quantity,
-            f"{where}.quantity", quantity, f"must be a dotted path of summary.json under {', '.join(MEASURABLE_TABLES)}")
+    quantity = check_quantity(raw.get("quantity"), where)
     condition = raw.get("condition")
     return Prediction(case=raw["case"], condition=None if condition is None else str(condition), quantity=quantity)
-
-
-def _measurement(i: int, raw: Any, cases: Mapping[str, CaseSpec]) -> Measurement:
-    where = f"measurements[{i}]"
-    target = _prediction(where, raw, cases, ("case", "condition", "quantity", "value", "uncertainty", "source"))
-    require(_number(raw.get("value")), f"{where}.value", raw.get("value"), "required: the measured number")
-    require("uncertainty" in raw, f"{where}.uncertainty", None,
-            "required: the measurement's standard deviation (> 0), in the quantity's unit")
-    require(_number(raw["uncertainty"]) and raw["uncertainty"] > 0, f"{where}.uncertainty", raw["uncertainty"],
-            "must be a number > 0 (one standard deviation)")
-    require(isinstance(raw.get("source"), str) and raw["source"].strip(), f"{where}.source", raw.get("source"),
-            "required: where the measured value comes from")
-    return Measurement(case=target.case, condition=target.condition, quantity=target.quantity,
-                       value=float(raw["value"]), uncertainty=float(raw["uncertainty"]), source=raw["source"])
 
 
 def parse_calibration(raw: Mapping[str, Any], base_dir: Path, path: Path | None = None) -> CalibrationSpec:
@@ -189,40 +203,50 @@ def parse_calibration(raw: Mapping[str, Any], base_dir: Path, path: Path | None 
             "required: one [cases.LABEL] table per case file")
     cases = {label: _case_spec(label, spec, base_dir) for label, spec in raw_cases.items()}
     raw_meas: Any = raw.get("measurements")
-    require(isinstance(raw_meas, list) and raw_meas, "measurements", raw_meas, "required: one [[measurements]] per value")
-    measurements = tuple(_measurement(i, m, cases) for i, m in enumerate(raw_meas))
+    require(isinstance(raw_meas, list) and raw_meas, "measurements", raw_meas, "required: one [[measurements]] per datum")
+    loaded: dict[tuple[str, str | None], Case] = {}
+
+    def case_at(label: str, condition: str | None, where: str) -> Case:
+        if (label, condition) not in loaded:
+            try:
+                loaded[(label, condition)] = cases[label].load(condition)
+            except InputError as exc:
+                raise InputError(f"{where} ({label}, condition {condition}): {exc.field}", exc.value,
+                                 exc.allowed) from None
+        return loaded[(label, condition)]
+
+    measurements = []
+    for i, m in enumerate(raw_meas):
+        where = f"measurements[{i}]"
+
+        def probes(label: str, cond: str | None, where: str = where) -> tuple[str, ...]:
+            return tuple(p.name for p in case_at(label, cond, where).probes)
+
+        measurements.append(parse_measurement(i, m, base_dir, cases, probes))
+        for o in measurements[-1].observables:
+            for t in o.terms:
+                case_at(t.case, t.condition, where)
     raw_pred = raw.get("predictions", [])
     require(isinstance(raw_pred, list), "predictions", raw_pred, "must be a list of [[predictions]] tables")
-    predictions = tuple(_prediction(f"predictions[{i}]", p, cases, ("case", "condition", "quantity"))
-                        for i, p in enumerate(raw_pred))
-    labels = [m.label for m in (*measurements, *predictions)]
-    require(len(set(labels)) == len(labels), "measurements", labels, "each case/condition/quantity may appear once")
-    loaded: dict[tuple[str, str | None], Case] = {}
-    targets: list[tuple[str, Measurement | Prediction]] = [(f"measurements[{i}]", m) for i, m in enumerate(measurements)]
-    targets += [(f"predictions[{i}]", p) for i, p in enumerate(predictions)]
-    for where, m in targets:
-        key = (m.case, m.condition)
-        if key not in loaded:
-            try:
-                loaded[key] = cases[m.case].load(m.condition)
-            except InputError as exc:
-                raise InputError(f"{where} ({m.case}, condition {m.condition}): {exc.field}", exc.value,
-                                 exc.allowed) from None
-        if m.quantity.startswith("probes."):
-            probe = m.quantity.split(".")[1]
-            names = [p.name for p in loaded[key].probes]
-            require(probe in names, f"{where}.quantity", m.quantity, f"no probe {probe!r}; the case's probes: "
-                    f"{', '.join(names) or 'none'}")
+    predictions = tuple(_prediction(f"predictions[{i}]", p, cases) for i, p in enumerate(raw_pred))
+    for i, p in enumerate(predictions):
+        case_at(p.case, p.condition, f"predictions[{i}]")
+    labels = [o.label for m in measurements for o in m.observables] + [p.label for p in predictions]
+    require(len(set(labels)) == len(labels), "measurements", sorted({x for x in labels if labels.count(x) > 1}),
+            "each case/condition/quantity may appear once")
+    groups = {m.group for m in measurements if m.group}
+    discrepancy = _discrepancy(raw.get("discrepancy", {}), groups)
     for i, inp in enumerate(inputs):
         require(any(used_by(inp, c) for c in loaded.values()), f"inputs[{i}]", inp.path,
                 "no case of the calibration reads that data file")
     return CalibrationSpec(name=str(raw.get("name", path.stem if path else "calibration")),
                            description=str(raw.get("description", "")), path=path, inputs=inputs, cases=cases,
-                           measurements=measurements, predictions=predictions,
+                           measurements=tuple(measurements), predictions=predictions, discrepancy=discrepancy,
                            design=_options(raw.get("design", {}), DESIGN_DEFAULTS, "design",
                                            {"screening_trajectories": 2, "training_runs": 0, "holdout_runs": 1, "seed": 0}),
                            sampler=_options(raw.get("sampler", {}), SAMPLER_DEFAULTS, "sampler",
-                                            {"walkers": 2 * len(inputs) + 2, "steps": 100, "burn": 0}))
+                                            {"walkers": 2 * (len(inputs) + len(discrepancy)) + 2, "steps": 100,
+                                             "burn": 0}))
 
 
 def load_calibration(path: str | Path) -> CalibrationSpec:

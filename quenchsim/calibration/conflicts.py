@@ -1,0 +1,87 @@
+"""Which data pull which inputs where, and which data no input set meets together.
+
+* Pulls: the posterior of the inputs given each datum alone (no discrepancy), on the same surrogate: where each
+  datum would put each input, and how much it narrows it.
+* Conflicts: the parameter goodness-of-fit statistic of Maltoni & Schwetz (Phys. Rev. D 68 (2003) 033020),
+  chi2_PG = min chi2(A and B) - min chi2(A) - min chi2(B), each minimum over the inputs' prior box: zero when one
+  input set meets both data as well as each alone, large when the inputs that meet one miss the other.
+  chi2 is :meth:`~quenchsim.calibration.likelihood.Likelihood.misfit` (measured values: squared standardised
+  residuals; bounds: -2 log Phi). A pair is reported as in conflict above :data:`CONFLICT_CHI2` (the 95 % point
+  of chi-square with one degree of freedom); the minimum of a datum alone above the same limit means no input set
+  inside the priors meets it at all.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from itertools import combinations
+from typing import Any
+
+import numpy as np
+from scipy.optimize import minimize
+
+from quenchsim.calibration.data import Measurement
+from quenchsim.calibration.inputs import FreeInput
+from quenchsim.calibration.likelihood import Likelihood
+from quenchsim.calibration.posterior import identifiability, sample_posterior
+
+CONFLICT_CHI2 = 3.841458820694124
+"""chi-square's 95 % point with one degree of freedom."""
+SCREEN_POINTS = 4000
+"""Random points of the prior box screened before the local searches of a minimum."""
+LOCAL_STARTS = 8
+
+
+def minimum_misfit(likelihood: Likelihood, d: int, seed: int = 0) -> tuple[float, np.ndarray]:
+    """The smallest misfit over the unit cube and where: a screen of random points, then L-BFGS-B from the best."""
+    rng = np.random.default_rng(seed)
+    screen = rng.uniform(size=(SCREEN_POINTS, d))
+    values = likelihood.misfit(screen)
+    best_value, best_u = float(np.min(values)), screen[int(np.argmin(values))]
+    for start in screen[np.argsort(values)[:LOCAL_STARTS]]:
+        res = minimize(lambda x: float(likelihood.misfit(x[None, :])[0]), start, method="L-BFGS-B",
+                       bounds=[(0.0, 1.0)] * d)
+        if res.fun < best_value:
+            best_value, best_u = float(res.fun), np.asarray(res.x)
+    return best_value, best_u
+
+
+def _datum_likelihood(likelihood: Likelihood, datum: Measurement) -> Likelihood:
+    return likelihood.subset([o.label for o in datum.observables])
+
+
+def pulls(likelihood: Likelihood, data: Sequence[Measurement], inputs: Sequence[FreeInput], walkers: int = 32,
+          steps: int = 1500, seed: int = 0) -> list[dict[str, Any]]:
+    """Per datum: the posterior of every input given that datum alone (factor median, 5-95 %, width over the prior's),
+    its best misfit and where (unit cube)."""
+    d = len(inputs)
+    rows = []
+    for datum in data:
+        lk = _datum_likelihood(likelihood, datum)
+        post = sample_posterior(Likelihood(lk.surrogate, lk.observables), d, walkers=max(walkers, 2 * d + 2),
+                                steps=steps, burn=steps // 3, seed=seed)
+        factors = post.factors(inputs)
+        best, where = minimum_misfit(lk, d, seed)
+        per_input = []
+        for j, inp in enumerate(inputs):
+            p5, p50, p95 = np.quantile(factors[:, j], [0.05, 0.5, 0.95])
+            ratio, _ = identifiability(post.u[:, j])
+            per_input.append({"input": inp.path, "factor_median": float(p50), "factor_5pct": float(p5),
+                              "factor_95pct": float(p95), "width_ratio": ratio})
+        rows.append({"datum": datum.label, "observables": len(datum.observables), "min_misfit": best,
+                     "met_alone": best <= CONFLICT_CHI2 * len(datum.observables),
+                     "best_factors": [inp.factor(float(x)) for inp, x in zip(inputs, where)], "inputs": per_input})
+    return rows
+
+
+def conflicts(likelihood: Likelihood, data: Sequence[Measurement], d: int, seed: int = 0) -> list[dict[str, Any]]:
+    """The parameter goodness-of-fit statistic of every pair of data (see the module docstring)."""
+    alone = {m.label: minimum_misfit(_datum_likelihood(likelihood, m), d, seed)[0] for m in data}
+    rows = []
+    for a, b in combinations(data, 2):
+        joint = likelihood.subset([o.label for o in (*a.observables, *b.observables)])
+        both, _ = minimum_misfit(joint, d, seed)
+        pg = both - alone[a.label] - alone[b.label]
+        rows.append({"a": a.label, "b": b.label, "chi2_a": alone[a.label], "chi2_b": alone[b.label], "chi2_both": both,
+                     "chi2_pg": pg, "conflict": pg > CONFLICT_CHI2})
+    return rows
