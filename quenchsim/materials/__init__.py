@@ -132,13 +132,18 @@ def load_data_file(name: str, subdir: str = "", field: str = "material") -> dict
 
 def load_material(name: str, field: str = "material") -> dict[str, Any]:
     """The raw material table of steel ``name``, with ``NAME.mechanics.toml`` (beside the steel's file) merged as
-    ``"mechanics"``."""
+    ``"mechanics"`` and the file its ``tempering`` key names (relative to it) as ``"tempering"``."""
     path = find_data_file(name, field=field)
     data = load_data_file(str(path), field=field)
     mech_path = path.with_name(f"{path.stem}.mechanics.toml")
     if "mechanics" not in data and mech_path.is_file():
         with mech_path.open("rb") as fh:
             data["mechanics"] = tomllib.load(fh)
+    if isinstance(data.get("tempering"), str):   # a tempering data file, relative to the steel's file
+        temper_path = path.parent / data["tempering"]
+        if not temper_path.is_file():
+            raise InputError(f"{Path(name).stem}.tempering", data["tempering"], f"no such file ({temper_path})")
+        data["tempering"] = load_data_file(str(temper_path), field=f"{Path(name).stem}.tempering")
     data.setdefault("name", Path(name).stem)
     return data
 
