@@ -302,10 +302,11 @@ class TemperingPhaseModel:
     :class:`TemperState`; no quench kinetics run during the temper (the austenite changes only by its decomposition;
     no martensite forms: the part stays above the room temperature it was quenched to)."""
 
-    time_dependent_phases: tuple[str, ...] = ()
-
     def __init__(self, tempering: Tempering) -> None:
         self.tempering = tempering
+        reaction = tempering.reactions.get(AUSTENITE_REACTION)
+        # the decomposing austenite's product: ``time.max_dX`` limits its change per step
+        self.time_dependent_phases: tuple[str, ...] = () if reaction is None else (reaction.product or "bainite",)
 
     def start(self, quenched: PhaseState) -> TemperState:
         return TemperState(P=np.zeros_like(quenched.T_min_C), start={p: np.array(quenched.fractions[p])
