@@ -18,8 +18,8 @@ T / w_k), its P50_k and w_k fixed by two published (temperature, time, progress)
   martensite (:func:`tempering_free_strain`); its phase fraction is unchanged;
 * the retained austenite's decomposition: a share progress(P) of the austenite at the start of the temper becomes
   the product phase (bainite): the stress model's own austenite -> bainite volume change applies;
-* hardness: the martensite's HV is min(as-quenched, HV_TM(P) = a - b P), fitted to published hardness after
-  tempering (:func:`fit_tempered_martensite`); the other phases keep theirs;
+* hardness: the martensite's HV is min(as-quenched, HV_TM(P)), a polynomial in P fitted to published hardness
+  after tempering (:func:`fit_tempered_martensite`); the other phases keep theirs;
 * relaxation: at a fixed strain the deviatoric stress falls as exp(-r(P)), r(P) = ln 2 * 10^((P - P50) / w).
 
 Data: ``materials/data/tempering_1C_Cr.toml`` (named by the steel file's ``tempering`` key), every number with
@@ -86,8 +86,7 @@ class Tempering:
     clock_constant: float
     reactions: Mapping[str, Reaction]
     relaxation: Process
-    hardness_a_HV: float
-    hardness_b_HV_per_K: float
+    hardness_poly_HV: tuple[float, ...]
     source: str
 
     def parameter_after(self, T_C: float, time_h: float) -> float:
@@ -95,7 +94,8 @@ class Tempering:
         return (T_C + KELVIN) * (self.clock_constant + math.log10(time_h))
 
     def tempered_martensite_HV(self, P: Any) -> np.ndarray:
-        return self.hardness_a_HV - self.hardness_b_HV_per_K * np.asarray(P, dtype=float)
+        """HV_TM(P), a polynomial in P/1000 (coefficients from the constant term up)."""
+        return np.polynomial.polynomial.polyval(np.asarray(P, dtype=float) / 1000.0, self.hardness_poly_HV)
 
 
 def hollomon_jaffe_advance(P: np.ndarray, T0_C: np.ndarray, T1_C: np.ndarray, dt_s: float, C: float) -> np.ndarray:
@@ -193,9 +193,9 @@ def load_tempering(material: Mapping[str, Any], kin: Kinetics) -> Tempering:
     relax = data.get("relaxation", {})
     pts = [(T, t, 1.0 - r) for T, t, r in _points(relax, "stress_ratio", f"{where}.relaxation")]
     relaxation = jmak_through(pts, C, f"{where}.relaxation")
-    base = Tempering(name, C, reactions, relaxation, 0.0, 0.0, str(data.get("source", "")))
-    a, b = fit_tempered_martensite(base, material, data.get("hardness", {}), f"{where}.hardness")
-    return Tempering(name, C, reactions, relaxation, a, b, base.source)
+    base = Tempering(name, C, reactions, relaxation, (0.0,), str(data.get("source", "")))
+    poly = fit_tempered_martensite(base, material, data.get("hardness", {}), f"{where}.hardness")
+    return Tempering(name, C, reactions, relaxation, poly, base.source)
 
 
 FAST_RATE_C_S = 30.0
@@ -226,13 +226,18 @@ def austenite_progress(tempering: Tempering, P: Any) -> np.ndarray:
     return np.zeros(np.shape(P)) if reaction is None else reaction.process.progress(P)
 
 
+HARDNESS_LAWS = {"linear_in_P": 1, "quadratic_in_P": 2}
+"""The polynomial degree in P of each form of HV_TM(P)."""
+
+
 def fit_tempered_martensite(tempering: Tempering, material: Mapping[str, Any], table: Mapping[str, Any],
-                            where: str) -> tuple[float, float]:
-    """(a, b) of HV_TM(P) = a - b P: least squares to the table's HRC after tempering at ``T_C`` for ``time_h`` of a
+                            where: str) -> tuple[float, ...]:
+    """The coefficients of HV_TM(P), a polynomial in P/1000 of the table's ``law``: least squares to the table's HRC after tempering at ``T_C`` for ``time_h`` of a
     specimen hardened from ``austenitising_temperature_C`` and quenched to ``room_temperature_C``, its retained
     austenite and that austenite's decomposition taken into account (:func:`specimen_hardness_HV`)."""
-    if table.get("law") != "linear_in_P":
-        raise InputError(f"{where}.law", table.get("law"), "must be 'linear_in_P'")
+    degree = HARDNESS_LAWS.get(table.get("law"))   # type: ignore[arg-type]
+    if degree is None:
+        raise InputError(f"{where}.law", table.get("law"), f"must be one of {', '.join(HARDNESS_LAWS)}")
     T = np.asarray(table.get("T_C", []), dtype=float)
     hrc = np.asarray(table.get("HRC", []), dtype=float)
     if T.ndim != 1 or T.size < 2 or hrc.shape != T.shape:
@@ -243,8 +248,9 @@ def fit_tempered_martensite(tempering: Tempering, material: Mapping[str, Any], t
     P = (T + KELVIN) * (tempering.clock_constant + math.log10(_value(table.get("time_h"), f"{where}.time_h")))
     x_m = 1.0 - specimen_austenite(kin, room)
     hv_m = (hrc_to_hv(hrc) - specimen_hardness_HV(tempering, kin, room, P, 0.0)) / x_m
-    slope, intercept = np.polyfit(P, hv_m, 1)
-    return float(intercept), float(-slope)
+    if T.size <= degree:
+        raise InputError(f"{where}.T_C", table.get("T_C"), f"needs more than {degree} points for the {table['law']} law")
+    return tuple(float(c) for c in np.polynomial.polynomial.polyfit(P / 1000.0, hv_m, degree))
 
 
 # -- the state of a tempering part ------------------------------------------------------------------------------
@@ -326,3 +332,39 @@ class TemperingPhaseModel:
     def restore_state(self, arrays: dict[str, Any]) -> TemperState:
         return TemperState(P=np.array(arrays["P"]), start={p: np.array(v) for p, v in arrays["start"].items()},
                            cooling_rate_700_C_s=np.array(arrays["cooling_rate_700_C_s"]))
+
+
+def isothermal_hold(tempering: Tempering, P: Any, T_C: float, time_h: float) -> np.ndarray:
+    """The clock after holding points at clock ``P`` for ``time_h`` hours at ``T_C`` (closed form of
+    :func:`hollomon_jaffe_advance` for a constant temperature): T (C + log10(10^(P/T - C) + t))."""
+    T = T_C + KELVIN
+    C = tempering.clock_constant
+    return T * (C + np.log10(np.power(10.0, np.minimum(np.asarray(P, dtype=float) / T - C, 30.0)) + time_h))
+
+
+@dataclass(frozen=True)
+class ServiceChange:
+    """What a hold in service does to tempered points (arrays over the points): the clock after it, the austenite
+    that decomposes (fraction of the point) and the martensite reactions' linear strain."""
+
+    P_after: np.ndarray
+    austenite_decomposed: np.ndarray
+    martensite_strain: np.ndarray
+
+
+def service_change(tempering: Tempering, P: Any, martensite: Any, austenite: Any, T_C: float, time_h: float
+                   ) -> ServiceChange:
+    """The change of tempered points (clock ``P``, present ``martensite`` and ``austenite`` fractions) held for
+    ``time_h`` at ``T_C``: the austenite at the start of the temper is austenite / (1 - progress(P)), of which the
+    share progress(P_after) - progress(P) decomposes; the martensite reactions add their strain between the two."""
+    P0 = np.asarray(P, dtype=float)
+    P1 = isothermal_hold(tempering, P0, T_C, time_h)
+    done = austenite_progress(tempering, P0)
+    start = np.asarray(austenite, dtype=float) / np.maximum(1.0 - done, 1e-12)
+    decomposed = start * (austenite_progress(tempering, P1) - done)
+    strain = np.zeros_like(P0)
+    for reaction in tempering.reactions.values():
+        if reaction.parent != "austenite":
+            strain = strain + np.asarray(martensite) * reaction.strain_per_parent * (
+                reaction.process.progress(P1) - reaction.process.progress(P0))
+    return ServiceChange(P1, decomposed, strain)
