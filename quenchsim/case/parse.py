@@ -344,9 +344,11 @@ def _temper(data: dict[str, Any], segments: list[str], process: ProcessSpec, air
     require(time_s > 0.0, "temper.time_s", time_s, "must be > 0 s (the time in the furnace)")
     model: Any = t.get("htc_model")
     require(model in ("natural", "table"), "temper.htc_model", model, "must be 'natural' or 'table'")
-    if not has_tempering(load_material(material)):
-        raise InputError("temper", material, "this steel has no tempering data (a `tempering` file named in its "
-                         "material file, as materials/SUJ3.toml names data/tempering_1C_Cr.toml); remove [temper] "
+    steel = load_material(material)
+    if not has_tempering(steel):
+        named = f" (its file names {steel['tempering']!r}, not found)" if isinstance(steel.get("tempering"), str) else ""
+        raise InputError("temper", material, f"this steel has no tempering data{named}: a `tempering` file named in "
+                         "its material file, as materials/SUJ3.toml names data/tempering_1C_Cr.toml; remove [temper] "
                          "or add the data")
     return TemperStage(temperature_C=temperature, time_s=time_s, htc_model=model,
                        emissivity=_number(t, "emissivity", "temper.emissivity", positive=True, maximum=1.0),

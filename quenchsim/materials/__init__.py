@@ -139,11 +139,13 @@ def load_material(name: str, field: str = "material") -> dict[str, Any]:
     if "mechanics" not in data and mech_path.is_file():
         with mech_path.open("rb") as fh:
             data["mechanics"] = tomllib.load(fh)
-    if isinstance(data.get("tempering"), str):   # a tempering data file, relative to the steel's file
-        temper_path = path.parent / data["tempering"]
-        if not temper_path.is_file():
-            raise InputError(f"{Path(name).stem}.tempering", data["tempering"], f"no such file ({temper_path})")
-        data["tempering"] = load_data_file(str(temper_path), field=f"{Path(name).stem}.tempering")
+    if isinstance(data.get("tempering"), str):
+        # a tempering data file, relative to the steel's file or to a data folder (a steel copied elsewhere keeps
+        # the shipped data); not found, the steel has none (a [temper] is then refused, naming the file)
+        found = [p for p in (path.parent / data["tempering"], *(f / data["tempering"] for f in data_folders()))
+                 if p.is_file()]
+        if found:
+            data["tempering"] = load_data_file(str(found[0]), field=f"{Path(name).stem}.tempering")
     data.setdefault("name", Path(name).stem)
     return data
 

@@ -77,9 +77,10 @@ def dilatometry(workdir: Path) -> dict[str, Any]:
     plt.close(fig)
     return {"stages": stages, "retained_austenite_as_quenched": x_a0, "austenite_to_bainite_strain": gamma,
             "growth_per_percent_RA": gamma * 0.01,
-            "order_contraction_expansion_contraction": bool(
-                stages["martensite_transition_carbide"]["T50_C"] < stages[AUSTENITE_REACTION]["T50_C"]
-                < stages["martensite_cementite"]["T50_C"])}
+            "expansion_after_first_contraction_K": stages[AUSTENITE_REACTION]["T50_C"]
+            - stages["martensite_transition_carbide"]["T50_C"],
+            "second_contraction_after_expansion_K": stages["martensite_cementite"]["T50_C"]
+            - stages[AUSTENITE_REACTION]["T50_C"]}
 
 
 def relaxation_closed_form() -> dict[str, float]:

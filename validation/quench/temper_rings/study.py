@@ -46,7 +46,9 @@ def page(metrics: dict[str, Any]) -> str:
     md = ["Each ring is run once through quench, air cooling, a 2 h hold in 180 C furnace air (natural convection "
           "and radiation) and air cooling (`[temper]`, docs/guide/temper.md); its summary.json keeps the as-quenched "
           "state beside the tempered one. No dimension of a tempered ring is published for these cases: the page "
-          "records the prediction.", ""]
+          "records the prediction. The tempering model and its sources: validation/materials/tempering "
+          "(reports/materials_tempering.md); the stress relaxation law is an assumption with a wide prior "
+          "(materials/data/tempering_1C_Cr.toml [relaxation]).", ""]
     for ring, m in metrics.items():
         q, t, bore = m["as_quenched"], m["tempered"], m["bore_name"]
         md += [f"### Ring {ring[0]}, condition {ring[1:]} (status {m['status']})", "",
@@ -59,7 +61,7 @@ def page(metrics: dict[str, Any]) -> str:
         md.append(f"| retained austenite, mean | {a:.4f} | {b:.4f} | {b - a:+.4f} |")
         for k, a in q["dimensions_after_mm"].items():
             b = t["dimensions_after_mm"][k]
-            md.append(f"| {k.replace('id', bore)} (mm) | {a:.3f} | {b:.3f} | {b - a:+.4f} |")
+            md.append(f"| {bore if k == 'id' else k} (mm) | {a:.3f} | {b:.3f} | {b - a:+.4f} |")
         for k in ("bore_taper", "od_taper", "bore_crown", "od_crown"):
             a, b = q["shape_after_mm"][k], t["shape_after_mm"][k]
             if a is not None and b is not None:
