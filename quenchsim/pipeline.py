@@ -260,6 +260,7 @@ class QuenchRun(QuenchModel):
                         float(np.max(self.thermal.T)))
         self.as_quenched = state_summary(self)
         tempering = self.tempering
+        assert tempering is not None   # the case loads only when its steel has tempering data (case.parse._temper)
         model = TemperingPhaseModel(tempering)
         self.phase_model = self.thermal.phase_model = model
         self.thermal.phase_state = model.start(self.thermal.phase_state)

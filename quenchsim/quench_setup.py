@@ -172,7 +172,8 @@ class QuenchModel:
         self.kin = metallurgy.load_kinetics(self.material, self.T_aust) if transforms(self.material) else None
         self.tempering = (None if case.temper is None or self.kin is None
                           else metallurgy.load_tempering(self.material, self.kin))
-        self.phase_model = metallurgy.PhaseModel(self.kin)
+        # the quench's phase model; a [temper] replaces it by the tempering one (pipeline.QuenchRun._start_temper)
+        self.phase_model: Any = metallurgy.PhaseModel(self.kin)
         self.thermal = ThermalSolver(self.fe, thermal_properties(self.material), self.T_aust, self.phase_model,
                                      self.phase_model.initial_state(self.fe.r_qp.shape))
         self.projection = NodalProjection(self.section.mesh, INTORDER)

@@ -326,7 +326,8 @@ class MechanicsSolver:
         st.free = free1
         st.plastic = st.plastic + update.d_plastic_strain
         d_trip = update.d_trip_strain
-        if d_phi_creep is not None:   # the viscous flow shares the TRIP term's direction: split it by its dPhi
+        if d_phi_creep is not None and d_phi is not None:   # the viscous flow shares the TRIP term's direction:
+            # split it by its dPhi
             share = np.divide(d_phi_creep, d_phi, out=np.zeros_like(d_phi_creep), where=d_phi > 0.0)[..., None]
             st.creep = (np.zeros_like(st.trip) if st.creep is None else st.creep) + share * d_trip
             d_trip = (1.0 - share) * d_trip
