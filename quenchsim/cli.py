@@ -30,6 +30,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "calibrate": ("quenchsim.commands.calibrate", "fit uncertain inputs to measurements: screening, surrogate, posterior"),
     "report": ("quenchsim.commands.report", "HTML/Markdown report of run or sweep directories"),
     "validate": ("quenchsim.commands.validate", "run the studies of validation/, write reports/, exit 1 on a missed target"),
+    "stability": ("quenchsim.commands.stability", "size change of a tempered part held at a service temperature"),
     "view": ("quenchsim.commands.view", "off-screen render of a run's final field to PNG"),
     "quenchant": ("quenchsim.commands.quenchant", "still-bath h(T_s) of a quenchant from its ISO 9950 probe curve"),
 }

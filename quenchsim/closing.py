@@ -24,7 +24,8 @@ def end_state(run: Any, closing_step: bool = True) -> dict[str, Any]:
     within ``air.until_max_C`` and ``closing_step``; otherwise report the hot state as it is. Returns the
     summary's ``end_state`` (temperatures in C, time in s)."""
     T_max, T_min = float(np.max(run.thermal.T)), float(np.min(run.thermal.T))
-    if closing_step and T_max <= run.case.air.until_max_C + 1e-9:
+    until_max_C = run.case.air.until_max_C if run.case.temper is None else run.case.temper.cool_until_max_C
+    if closing_step and T_max <= until_max_C + 1e-9:
         close_at_room_temperature(run)
         return {"at_room_temperature": True, "time_s": float(run.thermal.time_s),
                 "max_temperature_before_closing_C": T_max}
@@ -34,8 +35,8 @@ def end_state(run: Any, closing_step: bool = True) -> dict[str, Any]:
         log.error("stresses and dimensions are those at the last stress step before t = %.4g s: %s",
                   run.thermal.time_s, exc)
     if closing_step:
-        log.warning("the air stage ended at t = %.4g s with the part at up to %.0f C (air.until_max_C = %g C): %s",
-                    run.thermal.time_s, T_max, run.case.air.until_max_C, STILL_HOT_NOTE)
+        log.warning("the last stage ended at t = %.4g s with the part at up to %.0f C (its until_max_C = %g C): %s",
+                    run.thermal.time_s, T_max, until_max_C, STILL_HOT_NOTE)
     return {"at_room_temperature": False, "time_s": float(run.thermal.time_s), "max_temperature_C": T_max,
             "min_temperature_C": T_min, "note": STILL_HOT_NOTE}
 

@@ -22,8 +22,9 @@ import numpy as np
 from quenchsim import closing
 from quenchsim.case import Case
 from quenchsim.materials import load_material
-from quenchsim.quench_setup import QuenchModel, require_mechanics_data, stage_htc, stages, step_controller
-from quenchsim.errors import QuenchsimError, RunInterrupted, SolverError
+from quenchsim.quench_setup import (TEMPER_STAGES, QuenchModel, require_mechanics_data, stage_htc, stages,
+                                    step_controller)
+from quenchsim.errors import InputError, QuenchsimError, RunInterrupted, SolverError
 from quenchsim.io.checkpoint import read_resumable, restore_run, save_run
 from quenchsim.io.signals import StopRequest, signals_as_stop_request
 from quenchsim.mechanics.coupling import StressCoupling
@@ -75,6 +76,9 @@ class QuenchRun(QuenchModel):
         # a resumed run checks its case against the folder's before anything is written or meshed; a new one
         # checks the folder and clears an earlier run's outputs (stale frames, an earlier summary's status)
         self.checkpoint_path = Path(out_dir) / files.CHECKPOINT_NPZ
+        if resume and case.temper is not None:
+            raise InputError("--resume", str(out_dir), "a run with a [temper] stage cannot be resumed yet; run it "
+                             "again without --resume")
         checkpoint = read_resumable(self.checkpoint_path, case.resolved(), Path(out_dir)) if resume else None
         material = load_material(case.material)
         require_mechanics_data(case, material)   # a transforming steel without mechanics data: refused, nothing written
@@ -179,10 +183,14 @@ class QuenchRun(QuenchModel):
             with self.timings("bath_htc_s"):
                 htc = stage_htc(case, stage.name, self.points)
             if position["stage_end_s"] is None:  # the stage starts (not resumed within it)
+                if stage.name == "temper":
+                    self._start_temper()
                 position["stage_end_s"] = self.thermal.time_s + stage.duration_s
                 self.thermal.restart()
             t_end = position["stage_end_s"]
-            observer.stage(stage, plan[index + 1:], htc, lambda name: stage_htc(case, name, self.points), t_end)
+            tempering = stage.name in TEMPER_STAGES
+            if not tempering:
+                observer.stage(stage, plan[index + 1:], htc, lambda name: stage_htc(case, name, self.points), t_end)
             self.bar.phase(stage.name)
             while self.thermal.time_s < t_end - 1e-9 and float(np.max(self.thermal.T)) > stage.until_max_C:
                 if self.stop.requested or time.perf_counter() - last_checkpoint >= every_s:
@@ -225,12 +233,42 @@ class QuenchRun(QuenchModel):
                     with self.timings("output_s"):
                         self.record.frame(self.thermal.time_s, self.thermal.T, self.nodal_fields())
                 position["dt_s"] = steps.next_dt(dt, limit)
-                observer.step(dt, dX, step.max_dT_K, T_qp_before)
+                if tempering:
+                    self.bar.update(self.thermal.time_s, min(self.thermal.time_s / self.bar.total_s, 0.999),
+                                    counts["steps"], 0.0)
+                else:
+                    observer.step(dt, dX, step.max_dT_K, T_qp_before)
             self._mechanics_catch_up()
             position["stage"], position["stage_end_s"] = index + 1, None
             self._checkpoint()
             last_checkpoint = time.perf_counter()
         self.bar.finish(self.thermal.time_s)
+
+    def _start_temper(self) -> None:
+        """The quench is over: close it at room temperature (when the air stage cooled the part), keep the as-quenched
+        summary, and hand the thermal and stress solvers the tempering (:mod:`quenchsim.metallurgy.tempering`,
+        :mod:`quenchsim.mechanics.tempering`)."""
+        from quenchsim.mechanics.tempering import TemperCoupling
+        from quenchsim.metallurgy.tempering import TemperingPhaseModel, relaxation_term, tempering_free_strain
+        from quenchsim.results.assemble import state_summary
+
+        self._mechanics_catch_up()
+        if float(np.max(self.thermal.T)) <= self.case.air.until_max_C + 1e-9:
+            closing.close_at_room_temperature(self)
+        else:
+            log.warning("the air stage ended with the part at up to %.0f C: the temper starts from that hot state",
+                        float(np.max(self.thermal.T)))
+        self.as_quenched = state_summary(self)
+        tempering = self.tempering
+        assert tempering is not None   # the case loads only when its steel has tempering data (case.parse._temper)
+        model = TemperingPhaseModel(tempering)
+        self.phase_model = self.thermal.phase_model = model
+        self.thermal.phase_state = model.start(self.thermal.phase_state)
+        if self.stress is not None:
+            self.stress = TemperCoupling(self.mech, self.thermal, model,
+                                         lambda state: tempering_free_strain(tempering, state),
+                                         lambda state: relaxation_term(tempering, state.P),
+                                         self.timings, self._count_stress_step)
 
     def _checkpoint(self) -> None:
         """Write the whole state after the last committed step to the run folder (:func:`save_run`)."""

@@ -20,8 +20,8 @@ from quenchsim.fem import INTORDER
 from quenchsim.materials import load_material, thermal_properties, transforms
 from quenchsim.results.final_part import FinalPart
 from quenchsim.results.postprocess import NodalProjection
-from quenchsim.thermal import (AxisymmetricP2, ImmersionHTC, SurfaceTemperatureHTC, TableHTC, ThermalSolver,
-                               parse_htc_table)
+from quenchsim.thermal import (AxisymmetricP2, HeatingHTC, ImmersionHTC, SurfaceTemperatureHTC, TableHTC,
+                               ThermalSolver, parse_htc_table)
 from quenchsim.thermal.steps import REJECT_ABOVE, StepController
 
 
@@ -81,10 +81,18 @@ class Stage:
     until_max_C: float = -math.inf
 
 
+TEMPER_STAGES = ("temper", "temper_cool")
+"""The stages a ``[temper]`` adds after the air stage: the furnace, then air cooling."""
+
+
 def stages(case: Case) -> list[Stage]:
     """The stages of a run in order (the progress bar and the checkpoints count them)."""
-    return [Stage("transfer", case.transfer.time_s), Stage("quench", case.quench.time_s),
+    plan = [Stage("transfer", case.transfer.time_s), Stage("quench", case.quench.time_s),
             Stage("air", case.air.time_s, case.air.until_max_C)]
+    if case.temper is not None:
+        plan += [Stage("temper", case.temper.time_s),
+                 Stage("temper_cool", case.temper.cool_time_s, case.temper.cool_until_max_C)]
+    return plan
 
 
 def step_controller(ctl: Any) -> StepController:
@@ -102,6 +110,13 @@ def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
 
     if stage == "transfer":
         return SurfaceTemperatureHTC(bath.air_htc(points, case.transfer.temperature_C, case.transfer.emissivity))
+    if stage == "temper":
+        temper = case.temper
+        assert temper is not None   # a temper stage exists only with a [temper] table
+        if temper.htc_model == "table":
+            assert temper.htc_table is not None   # the "table" model carries its tables (case.parse._temper)
+            return parse_htc_table(dict(temper.htc_table), points.segment, "temper.htc_table")
+        return HeatingHTC(SurfaceTemperatureHTC(bath.air_htc(points, temper.temperature_C, temper.emissivity)))
     if stage == "quench":
         # the quench stage carries its htc_table with the "table" model, its bath otherwise (case.parse._quench)
         oil: TableHTC | SurfaceTemperatureHTC
@@ -155,7 +170,10 @@ class QuenchModel:
         self.fe = AxisymmetricP2(self.section.mesh, cooled, intorder=INTORDER)
         self.points = cooled_surface_points(self.fe, self.section)
         self.kin = metallurgy.load_kinetics(self.material, self.T_aust) if transforms(self.material) else None
-        self.phase_model = metallurgy.PhaseModel(self.kin)
+        self.tempering = (None if case.temper is None or self.kin is None
+                          else metallurgy.load_tempering(self.material, self.kin))
+        # the quench's phase model; a [temper] replaces it by the tempering one (pipeline.QuenchRun._start_temper)
+        self.phase_model: Any = metallurgy.PhaseModel(self.kin)
         self.thermal = ThermalSolver(self.fe, thermal_properties(self.material), self.T_aust, self.phase_model,
                                      self.phase_model.initial_state(self.fe.r_qp.shape))
         self.projection = NodalProjection(self.section.mesh, INTORDER)

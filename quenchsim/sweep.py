@@ -236,6 +236,11 @@ def flatten_summary(summary: dict[str, Any]) -> dict[str, Any]:
                 continue
             if value is None or isinstance(value, bool) or isinstance(value, (int, float)):
                 out[key] = value
+    tempered = summary.get("tempered")
+    if isinstance(tempered, dict):   # a run with a [temper]: the same outputs of the tempered part, and its change
+        out.update({f"tempered.{k}": v for k, v in flatten_summary(tempered).items()})
+        out.update({f"tempered.change_by_temper_mm.{k}": v
+                    for k, v in tempered.get("change_by_temper_mm", {}).items()})
     return out
 
 

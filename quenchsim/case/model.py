@@ -16,6 +16,9 @@ Tables of a case file and the dataclass each becomes:
                    level the quench HTC, above it the transfer air's)                  -> :class:`QuenchStage`
 ``[air]``          ``temperature_C``, ``until_max_C`` (stop when the hottest point is below) or ``time_s``,
                    ``htc_model = "natural" | "table"`` with ``emissivity`` or ``[air.htc_table]`` -> :class:`AirStage`
+``[temper]``       optional, after the air stage: ``temperature_C``, ``time_s`` (in the furnace, from the part's
+                   entry), ``htc_model = "natural" | "table"`` with ``emissivity`` or ``[temper.htc_table]``, then
+                   cooling in air (the ``[air]`` stage's medium) until ``cool_until_max_C``    -> :class:`TemperStage`
 ``[[probes]]``     ``name``, ``r_mm``, ``z_mm``                                       -> :class:`Probe`
 ``[time]``         step control: ``dt_initial_s``, ``dt_min_s``, ``dt_max_s``, ``max_dT_K``, ``max_dX``,
                    ``growth``                                                        -> :class:`TimeControl`
@@ -83,6 +86,21 @@ class AirStage:
     htc_model: str
     emissivity: float
     htc_table: Mapping[str, Any] | None
+
+
+@dataclass(frozen=True)
+class TemperStage:
+    """The temper after the quench: ``time_s`` in a furnace at ``temperature_C`` (still furnace air, natural
+    convection plus radiation with ``emissivity``, or an HTC table), then air cooling until the hottest point is
+    below ``cool_until_max_C`` or ``cool_time_s`` ends."""
+
+    temperature_C: float
+    time_s: float
+    htc_model: str
+    emissivity: float
+    htc_table: Mapping[str, Any] | None
+    cool_until_max_C: float
+    cool_time_s: float
 
 
 @dataclass(frozen=True)
@@ -157,6 +175,7 @@ class Case:
     output: OutputSpec
     mechanics: MechanicsOptions
     probes: tuple[Probe, ...]
+    temper: TemperStage | None = None
 
     def get(self, dotted: str, default: Any = None) -> Any:
         """The raw value at a dotted path of the merged table (for reports; the run reads the typed fields)."""

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from quenchsim.case.model import (AirStage, Case, MechanicsOptions, MeshSpec, OutputSpec, Probe, ProcessSpec,
-                                  QuenchStage, TimeControl, TransferStage)
+                                  QuenchStage, TemperStage, TimeControl, TransferStage)
 from quenchsim.errors import InputError, require, require_known_keys
 from quenchsim.geometry.profile import MM, Profile, profile_from_case
 
@@ -36,18 +36,27 @@ DEFAULTS: dict[str, Any] = {
 }
 
 TABLE_KEYS: dict[str, tuple[str, ...]] = {
-    "": ("name", "description", "material", "geometry", "mesh", "process", "transfer", "quench", "air", "time",
-         "output", "mechanics", "probes", "measured", "peer", "conditions"),
+    "": ("name", "description", "material", "geometry", "mesh", "process", "transfer", "quench", "air", "temper",
+         "time", "output", "mechanics", "probes", "measured", "peer", "conditions"),
     "mesh": ("size_mm", "surface_size_mm", "surface_layer_mm"),
     "process": ("austenitising_temperature_C", "room_temperature_C"),
     "transfer": ("time_s", "temperature_C", "emissivity"),
     "quench": ("time_s", "htc_model", "bath", "htc_table", "immersion_speed_mm_s"),
     "air": ("temperature_C", "until_max_C", "time_s", "htc_model", "emissivity", "htc_table"),
+    "temper": ("temperature_C", "time_s", "htc_model", "emissivity", "htc_table", "cool_until_max_C", "cool_time_s"),
     "time": ("dt_initial_s", "dt_min_s", "dt_max_s", "max_dT_K", "max_dX", "growth", "mechanics_max_dT_K",
              "mechanics_max_dX"),
     "output": ("frames", "checkpoint_minutes"),
 }
 """Known keys of each table (a key not listed is an error: a misspelt key must not be ignored)."""
+
+TEMPER_DEFAULTS: dict[str, Any] = {"htc_model": "natural", "emissivity": 0.8, "cool_time_s": 20000.0}
+"""Defaults of a ``[temper]`` table, merged only into a case that has one (a case without a temper keeps its resolved
+inputs, hence its case_sha256); ``cool_until_max_C`` defaults to ``air.until_max_C``. Emissivity 0.80 as the
+transfer's (oxidised steel)."""
+TEMPER_MAX_C = 400.0
+"""Highest tempering temperature of the tempering data (its third stage ends at 350 C after 1 h; the fourth stage,
+carbide coarsening and recovery, is not modelled)."""
 
 
 def deep_merge(base: Mapping[str, Any], override: Mapping[str, Any]) -> dict[str, Any]:
@@ -220,11 +229,12 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
     checkpoint_minutes = _number(o, "checkpoint_minutes", "output.checkpoint_minutes", minimum=0.0, maximum=1440.0)
     mechanics = _mechanics(data, material, process)
     probes = _probes(data, profile)
+    temper = _temper(data, segments, process, air, material) if "temper" in data else None
     return Case(name=name, condition=condition, path=path, data=data, material=material, profile=profile,
                 reference_state=reference_state, mesh=mesh, process=process, transfer=transfer, quench=quench,
                 air=air, time=time,
                 output=OutputSpec(frames=frames, checkpoint_minutes=checkpoint_minutes), mechanics=mechanics,
-                probes=probes)
+                probes=probes, temper=temper)
 
 
 def _mesh(m: Mapping[str, Any], profile: Profile) -> MeshSpec:
@@ -311,6 +321,42 @@ def _air(data: Mapping[str, Any], segments: list[str]) -> AirStage:
                     htc_model=model,
                     emissivity=_number(a, "emissivity", "air.emissivity", minimum=0.0, maximum=1.0),
                     htc_table=_htc_tables(a.get("htc_table"), "air.htc_table", segments) if model == "table" else None)
+
+
+def _temper(data: dict[str, Any], segments: list[str], process: ProcessSpec, air: AirStage, material: str
+            ) -> TemperStage:
+    """The ``[temper]`` stage (its defaults merged into ``data``): below the austenitising temperature and the
+    tempering data's range, a positive time, a steel with tempering data."""
+    from quenchsim.materials import load_material
+    from quenchsim.metallurgy.tempering import has_tempering
+
+    require(isinstance(data["temper"], Mapping), "temper", data["temper"], "must be a table")
+    data["temper"] = deep_merge({"cool_until_max_C": air.until_max_C, **TEMPER_DEFAULTS}, data["temper"])
+    t = _table(data, "temper")
+    T_aust = process.austenitising_temperature_C
+    temperature = _number(t, "temperature_C", "temper.temperature_C")
+    require(temperature < T_aust, "temper.temperature_C", temperature,
+            f"must be below the austenitising temperature {T_aust:g} C (a temper is a reheat of the quenched part)")
+    require(process.room_temperature_C < temperature <= TEMPER_MAX_C, "temper.temperature_C", temperature,
+            f"must lie above the room temperature {process.room_temperature_C:g} C and at most {TEMPER_MAX_C:g} C "
+            "(the range of the tempering data)")
+    time_s = _number(t, "time_s", "temper.time_s")
+    require(time_s > 0.0, "temper.time_s", time_s, "must be > 0 s (the time in the furnace)")
+    model: Any = t.get("htc_model")
+    require(model in ("natural", "table"), "temper.htc_model", model, "must be 'natural' or 'table'")
+    steel = load_material(material)
+    if not has_tempering(steel):
+        named = f" (its file names {steel['tempering']!r}, not found)" if isinstance(steel.get("tempering"), str) else ""
+        raise InputError("temper", material, f"this steel has no tempering data{named}: a `tempering` file named in "
+                         "its material file, as materials/SUJ3.toml names data/tempering_1C_Cr.toml; remove [temper] "
+                         "or add the data")
+    return TemperStage(temperature_C=temperature, time_s=time_s, htc_model=model,
+                       emissivity=_number(t, "emissivity", "temper.emissivity", positive=True, maximum=1.0),
+                       htc_table=_htc_tables(t.get("htc_table"), "temper.htc_table", segments)
+                       if model == "table" else None,
+                       cool_until_max_C=_number(t, "cool_until_max_C", "temper.cool_until_max_C",
+                                                minimum=air.temperature_C, maximum=temperature),
+                       cool_time_s=_number(t, "cool_time_s", "temper.cool_time_s", minimum=0.0))
 
 
 def _time(data: Mapping[str, Any]) -> TimeControl:

@@ -123,7 +123,38 @@ def summary_table(s: dict, out: Path) -> str:
             rows.append(f"measured: {s['measured']['source']}")
     if "shape_mm" in s:
         rows += shape_rows(s["shape_mm"])
+    if "tempered" in s:
+        rows += tempered_rows(s)
     return "\n".join(rows)
+
+
+def tempered_rows(s: dict) -> list[str]:
+    """The as-quenched and the tempered state side by side (a run with a [temper]): hardness, retained austenite,
+    dimensions, shape and residual hoop stress."""
+    t = s["tempered"]
+    temper = t["temper"]
+    rows = [f"temper {temper['temperature_C']:g} C, {temper['time_s'] / 3600.0:g} h in the furnace",
+            f"{'as quenched -> tempered':<34}{'quenched':>10}{'tempered':>10}{'change':>10}"]
+
+    def row(label: str, a: float | None, b: float | None, fmt: str = ".3f") -> None:
+        if a is not None and b is not None:
+            rows.append(f"{label:<34}{a:>10{fmt}}{b:>10{fmt}}{b - a:>+10{fmt}}")
+
+    if "hardness" in t:
+        row("core HRC", s["hardness"]["core_HRC"], t["hardness"]["core_HRC"], ".1f")
+        for where in ("od_mid", "bore_mid"):
+            row(f"surface HRC {where}", s["hardness"]["surface_HRC"].get(where),
+                t["hardness"]["surface_HRC"].get(where), ".1f")
+        row("retained austenite (mean)", s["phases_final"]["austenite"]["mean"],
+            t["phases_final"]["austenite"]["mean"], ".4f")
+    if "dimensions_mm" in t:
+        for k in t["dimensions_mm"]["after"]:
+            row(f"{k} (mm)", s["dimensions_mm"]["after"][k], t["dimensions_mm"]["after"][k], ".3f")
+        for key, label in SHAPE_ROWS:
+            row(f"{label} (mm)", s["shape_mm"]["after"][key], t["shape_mm"]["after"][key], ".4f")
+        for where, value in t["residual_stress_MPa"]["hoop"].items():
+            row(f"hoop stress {where} (MPa)", s["residual_stress_MPa"]["hoop"][where], value, ".0f")
+    return rows
 
 
 SHAPE_ROWS = (("bore_taper", "bore taper"), ("od_taper", "OD taper"), ("bore_crown", "bore crown"),

@@ -75,6 +75,10 @@ def summary_quantities(case: Case) -> dict[str, tuple[float, float]]:
         for comp in ("hoop", "axial"):
             for point in STRESS_POINTS:
                 out[f"residual_stress_MPa.{comp}.{point}"] = (-INF, INF)
+    if case.temper is not None:   # the tempered part: the same numbers under "tempered.", and the temper's change
+        out.update({f"tempered.{k}": v for k, v in list(out.items()) if not k.startswith("probes.")})
+        if case.mechanics.enabled:
+            out.update({f"tempered.change_by_temper_mm.{k}": (-INF, INF) for k in ("id", "od", "width")})
     return out
 
 

@@ -132,13 +132,20 @@ def load_data_file(name: str, subdir: str = "", field: str = "material") -> dict
 
 def load_material(name: str, field: str = "material") -> dict[str, Any]:
     """The raw material table of steel ``name``, with ``NAME.mechanics.toml`` (beside the steel's file) merged as
-    ``"mechanics"``."""
+    ``"mechanics"`` and the file its ``tempering`` key names (relative to it) as ``"tempering"``."""
     path = find_data_file(name, field=field)
     data = load_data_file(str(path), field=field)
     mech_path = path.with_name(f"{path.stem}.mechanics.toml")
     if "mechanics" not in data and mech_path.is_file():
         with mech_path.open("rb") as fh:
             data["mechanics"] = tomllib.load(fh)
+    if isinstance(data.get("tempering"), str):
+        # a tempering data file, relative to the steel's file or to a data folder (a steel copied elsewhere keeps
+        # the shipped data); not found, the steel has none (a [temper] is then refused, naming the file)
+        found = [p for p in (path.parent / data["tempering"], *(f / data["tempering"] for f in data_folders()))
+                 if p.is_file()]
+        if found:
+            data["tempering"] = load_data_file(str(found[0]), field=f"{Path(name).stem}.tempering")
     data.setdefault("name", Path(name).stem)
     return data
 

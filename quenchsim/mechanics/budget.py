@@ -47,6 +47,8 @@ from quenchsim.mechanics.constitutive import M_VEC, SQRT2, PointUpdate, lame_bul
 from quenchsim.mechanics.dimensions import ring_dimensions, section_area_mm2
 
 PARTS = ("free_strain", "thermal_plasticity", "transformation_plasticity", "elastic_residue")
+RELAXATION_PART = "tempering_relaxation"
+"""The part of a tempered ring's budget that its relaxation (creep) strain adds (only when there is one)."""
 MEASURES = ("id", "od", "width", "area_mm2")
 METHOD = ("superposition through the final elastic equilibrium: each strain part (free strain of the final "
           "phases against the annealed state, plastic, TRIP, elastic) is applied alone as an eigenstrain to the "
@@ -85,6 +87,8 @@ def eigenstrain_displacements(solver: Any, T_C: np.ndarray, fractions: Mapping[s
     eps_free = (state["free_strain"] - annealed_free_strain)[..., None] * M_VEC
     parts = {"free_strain": eps_free, "thermal_plasticity": _mandel(state, "plastic_strain"),
              "transformation_plasticity": _mandel(state, "trip_strain")}
+    if "creep_strain_rr" in state:
+        parts[RELAXATION_PART] = _mandel(state, "creep_strain")
     out = {}
     for name, eps in parts.items():
         vol = eps[..., 0] + eps[..., 1] + eps[..., 2]
@@ -135,5 +139,6 @@ def distortion_budget(solver: Any, before_mesh: MeshTri, T_C: np.ndarray, fracti
     parts = {}
     for name, u in eigenstrain_displacements(solver, T_C, fractions, annealed_free_strain).items():
         parts[name] = _linear_change(before_mesh, before, u)
-    closure = {k: sum(parts[p][k] for p in PARTS) - total[k] for k in MEASURES}
-    return {"method": METHOD, "parts": {p: parts[p] for p in PARTS}, "total": total, "sum_minus_total": closure}
+    names = [*PARTS, *([RELAXATION_PART] if RELAXATION_PART in parts else [])]
+    closure = {k: sum(parts[p][k] for p in names) - total[k] for k in MEASURES}
+    return {"method": METHOD, "parts": {p: parts[p] for p in names}, "total": total, "sum_minus_total": closure}

@@ -126,6 +126,7 @@ class _State:
     trip: np.ndarray     # (ne, nq, 4) Mandel TRIP strain
     eq_plastic: np.ndarray  # (ne, nq) equivalent plastic strain (hardening variable)
     stress: np.ndarray   # (ne, nq, 4) Mandel stress
+    creep: np.ndarray | None = None   # (ne, nq, 4) Mandel relaxation (creep) strain of a temper; None before one
 
 
 class MechanicsSolver:
@@ -194,12 +195,17 @@ class MechanicsSolver:
 
     # ------------------------------------------------------------------ stepping
     def step(self, T_C: np.ndarray, fractions: Mapping[str, np.ndarray], T_prev_C: np.ndarray,
-             fractions_prev: Mapping[str, np.ndarray], external_force_N: np.ndarray | None = None) -> StepInfo:
+             fractions_prev: Mapping[str, np.ndarray], external_force_N: np.ndarray | None = None, *,
+             extra_free_strain: np.ndarray | None = None, relaxation_increment: np.ndarray | None = None) -> StepInfo:
         """Advance from (T_prev, fractions_prev) to (T, fractions); commit the state if Newton converges.
 
         Arrays are shaped (n_elements, n_quadrature_points) of ``Basis(mesh, ElementTriP2(), intorder=4)``.
         ``external_force_N`` is a nodal load vector per radian (e.g. from
-        :func:`quenchsim.mechanics.loads.surface_load`) at the end of the step.
+        :func:`quenchsim.mechanics.loads.surface_load`) at the end of the step. A temper adds
+        ``extra_free_strain``, the step's isotropic free-strain increment of the tempering reactions, and
+        ``relaxation_increment`` dr >= 0: a viscous (creep) strain d eps_cr = 3/2 dPhi s_{n+1} with
+        3 mu dPhi = exp(dr) - 1, so that at a fixed strain the deviatoric stress falls by exp(-dr) exactly (the
+        implicit update of the TRIP term, :mod:`quenchsim.mechanics.constitutive`, carries it).
         """
         model, asm, st = self.model, self.asm, self._state
         shape = asm.radius.shape
@@ -209,13 +215,21 @@ class MechanicsSolver:
         T0 = np.broadcast_to(np.asarray(T_prev_C, dtype=float), shape)
         free0 = st.free if self._started else free_strain(model, T0, X0)
         free1 = free0 + free_strain_increment(model, T0, T1, X0, X1)
+        if extra_free_strain is not None:
+            free1 = free1 + extra_free_strain
 
         bulk, shear = lame_bulk_shear(model.E_Pa(T1, X1), model.nu(T1, X1))
         eq_plastic, yield_now, hardening = self._hardening(T1, X0, X1)
         d_phi = self._trip_increment(T1, X0, X1)
+        d_phi_creep = None
+        if relaxation_increment is not None:
+            d_phi_creep = np.expm1(np.maximum(relaxation_increment, 0.0)) / (3.0 * shear)
+            d_phi = d_phi_creep if d_phi is None else d_phi + d_phi_creep
 
         f_ext = np.zeros(asm.n_dofs) if external_force_N is None else np.asarray(external_force_N, dtype=float)
         base = free1[..., None] * M_VEC + st.plastic + st.trip
+        if st.creep is not None:
+            base = base + st.creep
 
         def evaluate(u: np.ndarray):
             update, f_int, f_abs = asm.evaluate(u, base, bulk, shear, yield_now, hardening, d_phi)
@@ -241,7 +255,7 @@ class MechanicsSolver:
         for iteration in range(model.max_newton_iterations + 1):
             if norm <= model.newton_rtol * reference + max(1e-12 * f_abs, ROUND_OFF * strain_scale):
                 self._last_increment, self._last_load = u - self.displacement_m, load
-                self._commit(u, free1, update, eq_plastic)
+                self._commit(u, free1, update, eq_plastic, d_phi_creep, d_phi)
                 return StepInfo(True, iteration, norm, int(np.count_nonzero(update.d_eq_plastic)),
                                 float(update.d_eq_plastic.max(initial=0.0)), tuple(history))
             if iteration == model.max_newton_iterations or not np.isfinite(norm):
@@ -305,12 +319,19 @@ class MechanicsSolver:
         eta = FORCING_MAX if iteration == 0 else 0.9 * (norm / history[-2]) ** 2
         return min(max(eta, 0.1 * rtol * reference / norm, LINEAR_RTOL), FORCING_MAX)
 
-    def _commit(self, u: np.ndarray, free1: np.ndarray, update: PointUpdate, eq_plastic: np.ndarray) -> None:
+    def _commit(self, u: np.ndarray, free1: np.ndarray, update: PointUpdate, eq_plastic: np.ndarray,
+                d_phi_creep: np.ndarray | None = None, d_phi: np.ndarray | None = None) -> None:
         st = self._state
         self.displacement_m = u
         st.free = free1
         st.plastic = st.plastic + update.d_plastic_strain
-        st.trip = st.trip + update.d_trip_strain
+        d_trip = update.d_trip_strain
+        if d_phi_creep is not None and d_phi is not None:   # the viscous flow shares the TRIP term's direction:
+            # split it by its dPhi
+            share = np.divide(d_phi_creep, d_phi, out=np.zeros_like(d_phi_creep), where=d_phi > 0.0)[..., None]
+            st.creep = (np.zeros_like(st.trip) if st.creep is None else st.creep) + share * d_trip
+            d_trip = (1.0 - share) * d_trip
+        st.trip = st.trip + d_trip
         st.eq_plastic = eq_plastic + update.d_eq_plastic
         st.stress = update.stress
         self._started = True
@@ -320,8 +341,11 @@ class MechanicsSolver:
         """Everything the next steps depend on: the committed material-point state (free, plastic and TRIP
         strains, hardening variable, stress), the displacement, the predictor and the linear solver's factor."""
         st = self._state
-        return {"points": {"free": st.free, "plastic": st.plastic, "trip": st.trip, "eq_plastic": st.eq_plastic,
-                           "stress": st.stress},
+        points = {"free": st.free, "plastic": st.plastic, "trip": st.trip, "eq_plastic": st.eq_plastic,
+                  "stress": st.stress}
+        if st.creep is not None:
+            points["creep"] = st.creep
+        return {"points": points,
                 "started": self._started, "displacement_m": self.displacement_m,
                 "last_increment": self._last_increment, "last_load": self._last_load,
                 "linear": self.linear_solver.checkpoint_state()}
@@ -332,7 +356,8 @@ class MechanicsSolver:
         if np.shape(points["free"]) != self._state.free.shape:
             raise ValueError(f"checkpoint state of shape {np.shape(points['free'])} for a mesh of {self._state.free.shape}")
         self._state = _State(**{name: np.array(points[name]) for name in ("free", "plastic", "trip", "eq_plastic",
-                                                                          "stress")})
+                                                                          "stress")},
+                             creep=np.array(points["creep"]) if "creep" in points else None)
         self._started = bool(state["started"])
         self.displacement_m = np.array(state["displacement_m"])
         self._last_increment = None if state.get("last_increment") is None else np.array(state["last_increment"])
@@ -349,11 +374,15 @@ class MechanicsSolver:
     @property
     def quadrature_state(self) -> dict[str, np.ndarray]:
         """Committed material-point state: free strain, plastic and TRIP strains (tensor components
-        rr, zz, tt, rz), equivalent plastic strain and von Mises stress, at the quadrature points."""
+        rr, zz, tt, rz; after a temper also its relaxation strain ``creep_strain_*``), equivalent plastic strain and
+        von Mises stress, at the quadrature points."""
         st = self._state
         out = {"free_strain": st.free, "equivalent_plastic_strain": st.eq_plastic,
                "von_mises_Pa": von_mises(st.stress)}
-        for name, tensor in (("plastic_strain", st.plastic), ("trip_strain", st.trip)):
+        tensors = [("plastic_strain", st.plastic), ("trip_strain", st.trip)]
+        if st.creep is not None:   # a tempered part's relaxation strain
+            tensors.append(("creep_strain", st.creep))
+        for name, tensor in tensors:
             for k, comp in enumerate(("rr", "zz", "tt")):
                 out[f"{name}_{comp}"] = tensor[..., k]
             out[f"{name}_rz"] = tensor[..., 3] / SQRT2

@@ -9,7 +9,8 @@ Public API (used by the time loop)::
     hv = hardness_HV(new, kin); hrc = hv_to_hrc(hv)
 
 Pearlite and bainite follow JMAK laws with Scheil additivity, martensite the Koistinen-Marburger law
-below Ms; see :mod:`quenchsim.metallurgy.transform` for the algorithm and
+below Ms; tempering (the ``[temper]`` stage, service stability) in :mod:`quenchsim.metallurgy.tempering`; see
+:mod:`quenchsim.metallurgy.transform` for the algorithm and
 :mod:`quenchsim.metallurgy.kinetics` for the material-file schema. CCT curves: :mod:`quenchsim.metallurgy.cct`.
 """
 
@@ -17,7 +18,9 @@ from quenchsim.metallurgy.adapter import PhaseModel
 from quenchsim.metallurgy.hardness import hardness_HV, hrc_to_hv, hv_to_hrc, phase_hardness_HV
 from quenchsim.metallurgy.kinetics import Kinetics, Reaction, load_kinetics
 from quenchsim.metallurgy.transform import PhaseState, advance, incubation_share, initial_state
+from quenchsim.metallurgy.tempering import Tempering, TemperingPhaseModel, TemperState, load_tempering
 
 __all__ = ["Kinetics", "PhaseModel", "Reaction", "PhaseState", "load_kinetics", "initial_state", "advance", "incubation_share",
            "hardness_HV",
-           "phase_hardness_HV", "hv_to_hrc", "hrc_to_hv"]
+           "phase_hardness_HV", "hv_to_hrc", "hrc_to_hv", "Tempering", "TemperingPhaseModel", "TemperState",
+           "load_tempering"]

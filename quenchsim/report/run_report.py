@@ -208,6 +208,43 @@ def _shape_table(run: RunResults) -> list[Item]:
                  rows=[[k, shape["before"][k], shape["after"][k], shape["change"][k]] for k in shape["change"]])]
 
 
+def _tempered_table(run: RunResults) -> list[Item]:
+    """A run with a ``[temper]`` (summary.json ``tempered``): the as-quenched and the tempered state side by side, and
+    the tempering part of the distortion budget."""
+    s = run.summary or {}
+    t = s.get("tempered")
+    if not t:
+        return []
+    rows: list[list[Any]] = []
+
+    def add(label: str, a: Any, b: Any) -> None:
+        if isinstance(a, (int, float)) and isinstance(b, (int, float)):
+            rows.append([label, a, b, b - a])
+
+    if "hardness" in t:
+        add("core HRC", s["hardness"]["core_HRC"], t["hardness"]["core_HRC"])
+        for where, v in t["hardness"]["surface_HRC"].items():
+            add(f"surface HRC {where}", s["hardness"]["surface_HRC"].get(where), v)
+        add("retained austenite (mean)", s["phases_final"]["austenite"]["mean"], t["phases_final"]["austenite"]["mean"])
+    if "dimensions_mm" in t:
+        for k, v in t["dimensions_mm"]["after"].items():
+            add(f"{k} (mm)", s["dimensions_mm"]["after"][k], v)
+        for k, v in t["shape_mm"]["after"].items():
+            add(f"{k} (mm)", s["shape_mm"]["after"][k], v)
+        for comp in ("hoop", "axial"):
+            for where, v in t["residual_stress_MPa"][comp].items():
+                add(f"{comp} stress {where} (MPa)", s["residual_stress_MPa"][comp][where], v)
+    temper = t["temper"]
+    items = [Item("table", f"As quenched and tempered ({fmt(temper['temperature_C'])} C, "
+                           f"{fmt(temper['time_s'] / 3600.0)} h in the furnace)",
+                  header=["quantity", "as quenched", "tempered", "change"], rows=rows)]
+    if "tempering_budget_mm" in t:
+        items.append(Item("table", "Tempering part of the distortion budget (after the temper minus as quenched, mm)",
+                          header=["part", "id", "od", "width"],
+                          rows=[[p, v["id"], v["od"], v["width"]] for p, v in t["tempering_budget_mm"].items()]))
+    return items
+
+
 def _uncertainty_table(run: RunResults) -> list[Item]:
     """The bands of ``quenchsim run --uncertainty`` (summary.json ``uncertainty``): every quantity, nominal run
     beside the median and the 5-95 % band of the draws."""
@@ -262,6 +299,7 @@ def run_section(run: RunResults) -> Section:
     else:
         missing.append("residual hoop-stress traverse: no residual_hoop_traverse.csv (written by runs with mechanics)")
     items += _dimension_table(run, missing)
+    items += _tempered_table(run)
     missing += run.notes
     if missing:
         items.append(Item("missing", "Not in this run directory", rows=[[m] for m in missing]))

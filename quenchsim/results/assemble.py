@@ -11,6 +11,7 @@ import numpy as np
 from quenchsim import __version__, mechanics, metallurgy
 from quenchsim.errors import RunInterrupted
 from quenchsim.geometry.profile import MM
+from quenchsim.results import files
 from quenchsim.results.measured import compare_with_measured
 from quenchsim.results.postprocess import phase_statistics
 from quenchsim.results.shape import shape_change
@@ -25,9 +26,13 @@ def nodal_fields(run: Any) -> dict[str, np.ndarray]:
     state = run.thermal.phase_state
     data = {"temperature_C": run.thermal.T[:nv].copy()}
     if run.kin is not None:  # a non-transforming material has no phases or hardness to show
-        for phase, X in state.fractions.items():
+        for phase, X in run.thermal.fractions().items():
             data[phase] = run.projection(X)
-        hv = metallurgy.hardness_HV(state, run.kin)
+        if isinstance(state, metallurgy.TemperState):   # during and after a temper: its clock and tempered hardness
+            data["tempering_parameter_K"] = run.projection(state.P)
+            hv = metallurgy.tempering.tempered_hardness_HV(run.tempering, run.kin, state)
+        else:
+            hv = metallurgy.hardness_HV(state, run.kin)
         data["hardness_HV"] = run.projection(hv)
         data["hardness_HRC"] = metallurgy.hv_to_hrc(data["hardness_HV"])
     if run.mech is not None:
@@ -63,15 +68,16 @@ def handling_summary(case: Any) -> dict[str, Any]:
     return out
 
 
-def mechanics_summary(run: Any, final: FinalSection) -> dict[str, Any]:
+def mechanics_summary(run: Any, final: FinalSection, prefix: str = "") -> dict[str, Any]:
     """Dimensions before/after and their distortion budget, residual stresses at mid-width, traverse and
-    outline files (``run``: a finished :class:`quenchsim.pipeline.QuenchRun` with the stress solved)."""
+    outline files (named with ``prefix``) (``run``: a :class:`quenchsim.pipeline.QuenchRun` with the stress
+    solved, at the state summarised)."""
     before = mechanics.ring_dimensions(run.before_mesh)
     after = mechanics.ring_dimensions(run.section.mesh, run.mech.displacement_m)
     r_mm, hoop, axial = residual_traverse(final, run.mech.nodal_fields())
-    run.writer.residual_traverse(r_mm, hoop, axial)
+    run.writer.residual_traverse(r_mm, hoop, axial, prefix)
     before_outline_mm = mechanics.section_outline(run.before_mesh) / MM
-    run.writer.outline(before_outline_mm, final.outline_m / MM)
+    run.writer.outline(before_outline_mm, final.outline_m / MM, prefix)
     budget = mechanics.distortion_budget(run.mech, run.before_mesh, run.thermal.T_qp, run.thermal.fractions(),
                                          run.mech_model.annealed_free_strain)
     return {"dimensions_mm": mechanics.dimension_change(before, after),
@@ -80,31 +86,70 @@ def mechanics_summary(run: Any, final: FinalSection) -> dict[str, Any]:
             "residual_stress_MPa": residual_stress_summary(hoop, axial)}
 
 
+def state_summary(run: Any, prefix: str = "") -> dict[str, Any]:
+    """The hardness and phases (a transforming steel), the dimensions, shape, budget and residual stresses (stress
+    solved) of ``run``'s present state, writing its traverse and outline files named with ``prefix``."""
+    fields = nodal_fields(run)
+    final = run.final_part.section()
+    out: dict[str, Any] = {}
+    if run.kin is None:
+        out["notes"] = ['the material does not transform (transformations = "none"): no phases, no hardness']
+    else:
+        out["hardness"], traverse = hardness_summary(run.profile, run.projection.p1, final, fields["hardness_HRC"])
+        run.writer.hardness_traverse(traverse["bore"][0], traverse["bore"][1], traverse["od"][1], prefix)
+        out["phases_final"] = phase_statistics(run.thermal.fractions(), run.fe.r_dx)
+        if run.case.probes:   # the phases and hardness where the thermocouples sit (austenitised geometry)
+            pts = np.array([[p.r_mm, p.z_mm] for p in run.case.probes]).T * MM * run.case_to_hot
+            out["probe_state"] = probe_state(run.projection.p1, pts, [p.name for p in run.case.probes], fields,
+                                             tuple(run.thermal.fractions()))
+    if run.mech is not None:
+        out.update(mechanics_summary(run, final, prefix))
+    return out
+
+
+def tempered_summary(run: Any, as_quenched: dict[str, Any]) -> dict[str, Any]:
+    """The ``tempered`` block of a run with a ``[temper]``: the temper, the state after it (the keys of the
+    as-quenched state, :func:`state_summary`, files prefixed ``tempered_``), the change of each dimension and shape
+    measure by the temper and the tempering part of the distortion budget (each part after minus as quenched; the
+    relaxation strain a part of its own)."""
+    temper = run.case.temper
+    state = state_summary(run, files.TEMPERED_PREFIX)
+    if "probe_state" in state:   # the tempered phases and HRC at each probe
+        state["probes"] = state.pop("probe_state")
+    out: dict[str, Any] = {"temper": {"temperature_C": temper.temperature_C, "time_s": temper.time_s,
+                                      "htc_model": temper.htc_model,
+                                      "hollomon_jaffe_constant": run.tempering.clock_constant},
+                           **state}
+    P = run.thermal.phase_state.P
+    out["tempering_parameter_K"] = {"min": float(P.min()), "max": float(P.max()),
+                                    "mean": float(np.sum(P * run.fe.r_dx) / np.sum(run.fe.r_dx))}
+    if "dimensions_mm" in state:
+        out["change_by_temper_mm"] = {k: state["dimensions_mm"]["after"][k] - as_quenched["dimensions_mm"]["after"][k]
+                                      for k in state["dimensions_mm"]["after"]}
+        before_parts = as_quenched["distortion_budget_mm"]["parts"]
+        out["tempering_budget_mm"] = {
+            part: {k: v - before_parts.get(part, {}).get(k, 0.0) for k, v in values.items()}
+            for part, values in state["distortion_budget_mm"]["parts"].items()}
+    return out
+
+
 def run_summary(run: Any, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wall0: float) -> dict[str, Any]:
     """The summary of the finished ``run`` (:class:`quenchsim.pipeline.QuenchRun`): probes, handling, hardness and
     phases (a transforming steel), dimensions, shape, budget and stresses (stress solved), energy and solver
     counts; writes the hardness, residual-stress and outline files on the way."""
     case = run.case
-    fields = nodal_fields(run)
     out: dict[str, Any] = {"case": case.name, "condition": case.condition,
                            "quenchsim_version": __version__, "case_sha256": case.digest()}
     out["probes"] = probe_times(time_s, probe_T)
     out["quench"] = handling_summary(case)
-    final = run.final_part.section()
-    if run.kin is None:
-        out["notes"] = ['the material does not transform (transformations = "none"): no phases, no hardness']
-    else:
-        out["hardness"], traverse = hardness_summary(run.profile, run.projection.p1, final, fields["hardness_HRC"])
-        run.writer.hardness_traverse(traverse["bore"][0], traverse["bore"][1], traverse["od"][1])
-        out["phases_final"] = phase_statistics(run.thermal.fractions(), run.fe.r_dx)
-        if case.probes:   # the final phases and hardness where the thermocouples sit (austenitised geometry)
-            pts = np.array([[p.r_mm, p.z_mm] for p in case.probes]).T * MM * run.case_to_hot
-            phases = tuple(run.thermal.fractions())
-            state = probe_state(run.projection.p1, pts, [p.name for p in case.probes], fields, phases)
-            for name, entry in state.items():
-                out["probes"][name].update(entry)
+    as_quenched = getattr(run, "as_quenched", None)
+    state = dict(state_summary(run) if as_quenched is None else as_quenched)
+    for name, entry in state.pop("probe_state", {}).items():   # the as-quenched phases and HRC at each probe
+        out["probes"][name].update(entry)
+    out.update(state)
+    if as_quenched is not None:
+        out["tempered"] = tempered_summary(run, as_quenched)
     if run.mech is not None:
-        out.update(mechanics_summary(run, final))
         measured = compare_with_measured(out.get("dimensions_mm"), dict(case.data), case.condition)
         if measured is not None:
             out["measured"] = measured

@@ -17,6 +17,9 @@ RESIDUAL_TRAVERSE_CSV = "residual_hoop_traverse.csv"
 """Hoop and axial residual stress across the wall at mid-width: ``r_mm,hoop_MPa,axial_MPa``."""
 OUTLINE_CSV = "outline.csv"
 """The section outline before and after: ``r_before_mm,z_before_mm,r_after_mm,z_after_mm``."""
+TEMPERED_PREFIX = "tempered_"
+"""A run with a ``[temper]`` writes the hardness, residual-stress and outline files twice: as quenched (the names
+above) and after the temper (this prefix before each name)."""
 SUMMARY_JSON = "summary.json"
 """Machine-readable results and the run's status (``ok`` / ``hot`` / ``failed`` / ``interrupted``)."""
 FINISHED_STATUSES = ("ok", "hot")
@@ -28,7 +31,8 @@ CHECKPOINT_NPZ = "checkpoint.npz"
 which ``quenchsim run ... --resume`` continues; removed when the run completes."""
 
 RUN_OUTPUTS = (SERIES_PVD, f"{SERIES_NAME}_*.vtu", FINAL_3D_VTU, PROBES_CSV, HARDNESS_TRAVERSE_CSV,
-               RESIDUAL_TRAVERSE_CSV, OUTLINE_CSV, SUMMARY_JSON, SUMMARY_JSON + ".tmp", MESH_MSH)
+               RESIDUAL_TRAVERSE_CSV, OUTLINE_CSV, SUMMARY_JSON, SUMMARY_JSON + ".tmp", MESH_MSH,
+               f"{TEMPERED_PREFIX}*.csv")
 """What a run writes (glob patterns) that a new run into the same folder replaces: cleared when it starts, so no
 frame or summary of an earlier run is left beside its own (case.toml is rewritten; ``uncertainty/`` is a cache)."""
 RUN_MARKERS = (CASE_TOML, SUMMARY_JSON, CHECKPOINT_NPZ, SERIES_PVD)

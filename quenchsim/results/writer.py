@@ -67,16 +67,18 @@ class RunWriter:
     def final_3d(self, last_vtu: Path) -> None:
         revolve_vtu(last_vtu, self.out / files.FINAL_3D_VTU)
 
-    def hardness_traverse(self, depth_mm: np.ndarray, hrc_from_bore: np.ndarray, hrc_from_od: np.ndarray) -> None:
-        _csv(self.out / files.HARDNESS_TRAVERSE_CSV, "depth_mm,HRC_from_bore,HRC_from_od",
+    def hardness_traverse(self, depth_mm: np.ndarray, hrc_from_bore: np.ndarray, hrc_from_od: np.ndarray,
+                          prefix: str = "") -> None:
+        _csv(self.out / (prefix + files.HARDNESS_TRAVERSE_CSV), "depth_mm,HRC_from_bore,HRC_from_od",
              np.column_stack([depth_mm, hrc_from_bore, hrc_from_od]), "%.5g")
 
-    def residual_traverse(self, r_mm: np.ndarray, hoop_MPa: np.ndarray, axial_MPa: np.ndarray) -> None:
-        _csv(self.out / files.RESIDUAL_TRAVERSE_CSV, "r_mm,hoop_MPa,axial_MPa", np.column_stack([r_mm, hoop_MPa, axial_MPa]),
+    def residual_traverse(self, r_mm: np.ndarray, hoop_MPa: np.ndarray, axial_MPa: np.ndarray,
+                          prefix: str = "") -> None:
+        _csv(self.out / (prefix + files.RESIDUAL_TRAVERSE_CSV), "r_mm,hoop_MPa,axial_MPa", np.column_stack([r_mm, hoop_MPa, axial_MPa]),
              "%.6g")
 
-    def outline(self, before_mm: np.ndarray, after_mm: np.ndarray) -> None:
-        _csv(self.out / files.OUTLINE_CSV, "r_before_mm,z_before_mm,r_after_mm,z_after_mm",
+    def outline(self, before_mm: np.ndarray, after_mm: np.ndarray, prefix: str = "") -> None:
+        _csv(self.out / (prefix + files.OUTLINE_CSV), "r_before_mm,z_before_mm,r_after_mm,z_after_mm",
              np.column_stack([before_mm, after_mm]), "%.6f")
 
     def summary(self, summary: dict[str, Any]) -> None:

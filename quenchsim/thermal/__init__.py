@@ -12,8 +12,9 @@ API (used by :mod:`quenchsim.pipeline` and by studies such as the ISO 9950 probe
 """
 
 from quenchsim.thermal.assembly import AxisymmetricP2
-from quenchsim.thermal.boundary import ImmersionHTC, SurfaceTemperatureHTC, TableHTC, parse_htc_table
+from quenchsim.thermal.boundary import (HeatingHTC, ImmersionHTC, SurfaceTemperatureHTC, TableHTC,
+                                        parse_htc_table)
 from quenchsim.thermal.solver import NoTransformation, PhaseModel, ThermalSolver, ThermalStep
 
-__all__ = ["AxisymmetricP2", "ImmersionHTC", "SurfaceTemperatureHTC", "TableHTC", "parse_htc_table", "NoTransformation",
+__all__ = ["AxisymmetricP2", "HeatingHTC", "ImmersionHTC", "SurfaceTemperatureHTC", "TableHTC", "parse_htc_table", "NoTransformation",
            "PhaseModel", "ThermalSolver", "ThermalStep"]

@@ -130,3 +130,18 @@ class ImmersionHTC:
             return self.immersed(T, time_s).reshape(shape)
         h_air = self.in_air(T, time_s) * (T - self.in_air.ambient_C) / np.maximum(T - self.ambient_C, 1.0)
         return np.where(wet, self.immersed(T, time_s), h_air).reshape(shape)
+
+
+class HeatingHTC:
+    """A still-air HTC(T_surface) (natural convection + radiation to ``ambient_C``) for a part colder than its
+    surroundings, as in a furnace: evaluated at the ambient plus |T_s - T_ambient|. Natural convection depends on the
+    temperature difference alone (its Grashof number; the film properties are taken on the hot side), and the
+    linearised radiation eps sigma (T_s^2 + T_a^2)(T_s + T_a) to first order in the difference."""
+
+    def __init__(self, inner: Any) -> None:
+        self.inner = inner
+        self.ambient_C = np.asarray(inner.ambient_C)
+
+    def __call__(self, T_surface_C: np.ndarray, time_s: float) -> np.ndarray:
+        T = np.asarray(T_surface_C, dtype=float)
+        return self.inner(self.ambient_C + np.abs(T - self.ambient_C), time_s)
