@@ -144,6 +144,18 @@ def test_factor_scales_the_entry_and_keeps_the_prior(tmp_path):
     assert case.get("material") == overrides["material"]
 
 
+def test_a_negative_quantity_with_a_range_of_its_sign_is_a_factor_band(tmp_path):
+    """The tempering reactions' volume changes are negative (contractions): range [-1.8, -0.45] on -0.9 is the factor
+    band 0.5-2, and the upper factor gives the more negative bound."""
+    inp = free_input("material.SUJ3.tempering.reactions.martensite_transition_carbide.volume_change_pct_per_C")
+    assert inp.factor_bounds == pytest.approx((0.5, 2.0))
+    from quenchsim.materials import load_material
+
+    overrides = derived_files([inp], [2.0], tmp_path)
+    entry = load_material(overrides["material"])["tempering"]["reactions"]["martensite_transition_carbide"]
+    assert entry["volume_change_pct_per_C"]["value"] == pytest.approx(-1.8)
+
+
 def _case_file(folder: Path) -> Path:
     path = folder / "ring1.toml"
     path.write_text(tomli_w.dumps(ring(40.0, 4.0, 8.0, 4.0)))

@@ -12,7 +12,8 @@ A free input is named by a dotted path ``KIND.NAME.KEY...``:
 
 The entry, or the nearest table above it, must carry a prior (:data:`quenchsim.mechanics.model.PRIOR_KEYS`):
 ``range_factor = f`` (the value times a factor in [1/f, f]) or ``range = [lo, hi]`` (a factor in
-[lo/v, hi/v], v the entry's value, or the first value of a table). The input is that factor, applied to
+[lo/v, hi/v], v the entry's value, or the first value of a table; for a negative quantity, with bounds of its sign,
+the same factors in order). The input is that factor, applied to
 every number of the entry (``value``, ``poly_T_C``, ``per_phase`` entries; temperatures and the prior itself
 are kept), with a log-uniform prior between its bounds: every band in the data files is a factor band on a
 positive quantity, and a log-uniform prior is the one that treats x f and / f alike.
@@ -183,9 +184,11 @@ def free_input(path: str, field: str = "inputs") -> FreeInput:
     else:
         lo, hi = (float(x) for x in holder["range"])
         v = first_value(holder)
-        if v is None or v <= 0.0 or lo <= 0.0:
-            raise InputError(field, path, f"range {holder['range']} needs a positive value to be a factor band")
-        bounds, prior = (lo / v, hi / v), f"range [{lo:g}, {hi:g}]"
+        if v is None or v == 0.0 or lo * v <= 0.0 or hi * v <= 0.0:
+            raise InputError(field, path, f"range {holder['range']} needs a value of the same sign as both bounds (not "
+                                          "0) to be a factor band")
+        a, b = lo / v, hi / v   # a negative quantity: its factor band is the bounds over it, in order
+        bounds, prior = (min(a, b), max(a, b)), f"range [{lo:g}, {hi:g}]"
     if not bounds[0] < bounds[1]:
         raise InputError(field, path, f"its prior {prior} has zero width: nothing to calibrate")
     source = holder.get("source") or (entry.get("source", "") if isinstance(entry, Mapping) else "")
