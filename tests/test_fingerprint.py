@@ -171,7 +171,7 @@ def test_a_cached_run_counts_by_the_code_a_run_executes(checkout):
                 _fingerprint(*args, runs_only=False, package=checkout / "quenchsim"))
 
     run0, code0 = both()
-    edit(checkout / "quenchsim" / "calibration" / "conflicts.py", "LOCAL_STARTS = 8", "LOCAL_STARTS = 9")
+    edit(checkout / "quenchsim" / "calibration" / "conflicts.py", "LOCAL_STARTS = 4", "LOCAL_STARTS = 5")
     run1, code1 = both()
     assert run1 == run0 and code1 != code0
     edit(checkout / "quenchsim" / "bath" / "config.py", "MAX_ROTATION_RPM = 601.0", "MAX_ROTATION_RPM = 602.0")

@@ -4,7 +4,10 @@
 ``posterior.json`` (``posterior=DIR``: only the calibrated inputs vary) or, when nothing was calibrated, from
 every prior declared in the data files the case reads (a Latin hypercube over their log-uniform priors), and
 adds to ``out/summary.json`` an ``uncertainty`` block: the median and 5-95 % band of every number of the
-summary over those runs. The runs are cached in ``out/uncertainty/`` (a re-run only runs what is missing).
+summary over those runs. A posterior with model-discrepancy groups (:mod:`quenchsim.calibration.likelihood`) adds
+to each draw of a number of a group's table (its key's first part, e.g. ``dimensions_mm``) a normal draw of that
+draw's discrepancy standard deviation: the band is then a prediction of a measurement, not of the model alone.
+The runs are cached in ``out/uncertainty/`` (a re-run only runs what is missing).
 """
 
 from __future__ import annotations
@@ -31,15 +34,28 @@ BAND_SKIP = ("solver.", "status", "end_state.time_s")
 POSTERIOR_JSON = "posterior.json"
 
 
-def _posterior_draws(folder: Path, n: int, seed: int) -> tuple[list[FreeInput], np.ndarray, str]:
+def _posterior_rows(folder: Path, n: int, seed: int) -> tuple[dict[str, Any], np.ndarray]:
     path = folder / POSTERIOR_JSON
     if not path.is_file():
         raise InputError("--posterior", str(folder), f"holds no {POSTERIOR_JSON} (the output folder of quenchsim calibrate)")
     data = json.loads(path.read_text())
+    return data, np.random.default_rng(seed).choice(len(data["factors"]), size=n, replace=len(data["factors"]) < n)
+
+
+def _posterior_draws(folder: Path, n: int, seed: int) -> tuple[list[FreeInput], np.ndarray, str]:
+    data, rows = _posterior_rows(folder, n, seed)
     inputs = [free_input(p, "--posterior") for p in data["inputs"]]
-    factors = np.asarray(data["factors"], dtype=float)
-    rows = np.random.default_rng(seed).choice(len(factors), size=n, replace=len(factors) < n)
-    return inputs, factors[rows], f"posterior of the calibration in {folder}"
+    return inputs, np.asarray(data["factors"], dtype=float)[rows], f"posterior of the calibration in {folder}"
+
+
+def discrepancy_draws(folder: Path, n: int, seed: int) -> list[dict[str, float]]:
+    """Per draw (the same posterior rows as the inputs' for this ``n`` and ``seed``): each discrepancy group's
+    standard deviation (empty for a calibration without discrepancy)."""
+    data, rows = _posterior_rows(folder, n, seed)
+    groups, sd = data.get("discrepancy_groups") or [], data.get("discrepancy_sd")
+    if not groups or sd is None:
+        return [{} for _ in range(n)]
+    return [dict(zip(groups, sd[r])) for r in rows]
 
 
 def _prior_draws(case: Case, n: int, seed: int) -> tuple[list[FreeInput], np.ndarray, str]:
@@ -82,13 +98,19 @@ def band_table(block: dict[str, Any]) -> str:
     return "\n".join(rows)
 
 
-def bands(summaries: list[dict[str, Any]]) -> dict[str, dict[str, float]]:
-    """Median and 5-95 % of every number of the summaries (over those that hold it)."""
+def bands(summaries: list[dict[str, Any]], discrepancy: list[dict[str, float]] | None = None,
+          seed: int = 0) -> dict[str, dict[str, float]]:
+    """Median and 5-95 % of every number of the summaries (over those that hold it); with ``discrepancy`` (per
+    summary, a group's standard deviation by the group's name) each number of a group's table gets a normal draw of
+    it added."""
+    rng = np.random.default_rng(seed)
     values: dict[str, list[float]] = {}
-    for s in summaries:
+    for i, s in enumerate(summaries):
+        groups = discrepancy[i] if discrepancy else {}
         for key, v in flatten(s):
             if isinstance(v, (int, float)) and not isinstance(v, bool) and not key.startswith(BAND_SKIP):
-                values.setdefault(key, []).append(float(v))
+                sd = groups.get(key.split(".")[0], 0.0)
+                values.setdefault(key, []).append(float(v) + (sd * float(rng.standard_normal()) if sd else 0.0))
     out = {}
     for key, vs in values.items():
         p5, p50, p95 = np.quantile(vs, [0.05, 0.5, 0.95])
@@ -108,8 +130,11 @@ def propagate(case: Case, out: str | Path, n: int, posterior: str | Path | None 
     done = run_requests(reqs, out / "uncertainty", workers=workers, progress=progress, desc="uncertainty")
     per_draw = [done.summaries.get(r.folder_name()) for r in reqs]
     ok = [s for s in per_draw if s is not None]
+    groups = discrepancy_draws(Path(posterior), n, seed) if posterior is not None else [{} for _ in per_draw]
+    ok_groups = [g for s, g in zip(per_draw, groups) if s is not None]
     block = {"source": source, "runs": n, "runs_ok": len(ok), "failed": len(done.failed),
-             "failures": done.failed, "inputs": [inp.path for inp in inputs], "band": "5-95 %", "quantities": bands(ok)}
+             "failures": done.failed, "inputs": [inp.path for inp in inputs], "band": "5-95 %",
+             "discrepancy": sorted({k for g in groups for k in g}), "quantities": bands(ok, ok_groups, seed)}
     if done.failed:   # a failed draw narrows the band: say which and why (the folders keep what they wrote)
         name, error = next(iter(done.failed.items()))
         log.warning("%d of %d uncertainty runs failed (summary.json 'uncertainty.failures'); %s: %s",

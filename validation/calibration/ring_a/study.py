@@ -1,12 +1,13 @@
-"""Calibrate four SUJ3 mechanics inputs on ring A condition 1 (measured ID/OD), then predict ring A conditions
-2 and 3 and ring B conditions 4-6 with bands, without touching ring B.
+"""Calibrate the bath's field, SUJ3's pearlite and the plastic flow on every measurement of ring A together (with a
+model discrepancy), then predict ring B conditions 4-6 with bands, without touching ring B.
 
-``ring_a_c1.cal.toml`` is the calibration (`quenchsim calibrate`): Morris screening and a Gaussian-process
-surrogate on a design of full-chain runs (mesh x2), an emcee posterior on it, the calibrated SUJ3 written as
-a new file. The predictions are the posterior propagated through the full chain (`quenchsim run
---uncertainty`): the same ``N_DRAWS`` posterior draws for every case, so the differences between conditions
-pair up draw by draw. Everything runs under ``runs/validation/calibration_ring_a/<code fingerprint>/`` (a
-changed model starts afresh; an interrupted run resumes from the cached runs).
+``ring_a.cal.toml`` is the calibration (`quenchsim calibrate`): a design of full-chain runs of ring A conditions 1-3
+(element sizes x2), Morris screening, a Gaussian process per observable, an emcee posterior of the 12 inputs and the
+5 discrepancy groups, each datum's pull, the conflicting pairs of data, and the nominal and calibrated runs at the
+default mesh. The predictions are the posterior propagated through the full chain (`quenchsim run --uncertainty`,
+``N_DRAWS`` draws per condition, the same draws for every condition) with the dimensions' discrepancy added. The runs
+are cached under ``runs/validation/calibration_ring_a/`` by their inputs and the run code (an interrupted study resumes
+from the cached runs; changed run code runs them again).
 """
 
 from __future__ import annotations
@@ -19,159 +20,122 @@ from typing import Any
 import numpy as np
 
 from quenchsim.calibration import calibrate, load_calibration, propagate
-from quenchsim.calibration.page import posterior_rows
-from quenchsim.case import load_case
-from quenchsim.validation import ROOT, code_fingerprint
+from quenchsim.calibration.page import (check_rows, conflict_rows, data_rows, discrepancy_rows, fidelity_rows,
+                                        posterior_rows, pull_rows)
+from quenchsim.validation import ROOT
 
-TITLE = "Calibration on ring A condition 1 and prediction of ring A conditions 2-3 and ring B conditions 4-6, with bands"
+TITLE = "Calibration on every measurement of ring A, and prediction of ring B conditions 4-6 with bands"
 SLOW = True
 HERE = Path(__file__).resolve().parent
-CAL_FILE = HERE / "ring_a_c1.cal.toml"
+CAL_FILE = HERE / "ring_a.cal.toml"
 N_DRAWS = 16
-"""Posterior draws propagated through the full chain per predicted case (5-95 % band from 16 runs: coarse)."""
+"""Posterior draws propagated through the full chain per predicted condition (5-95 % band from 16 runs: coarse)."""
 WORKERS = 2
-PREDICTED = {"A1": ("crb_outer_ring.toml", "1"), "A2": ("crb_outer_ring.toml", "2"), "A3": ("crb_outer_ring.toml", "3"),
-             "B4": ("srb_outer_ring.toml", "4"), "B5": ("srb_outer_ring.toml", "5"), "B6": ("srb_outer_ring.toml", "6")}
-DIMENSIONS = ("id", "od", "width")
+PREDICTED = {"B4": ("srb_outer_ring.toml", "4"), "B5": ("srb_outer_ring.toml", "5"), "B6": ("srb_outer_ring.toml", "6")}
+BANDED = {"raceway": "dimensions_mm.change.id", "od": "dimensions_mm.change.od", "width": "dimensions_mm.change.width",
+          "raceway_crown": "shape_mm.change.bore_crown", "raceway_taper": "shape_mm.change.bore_taper",
+          "od_taper": "shape_mm.change.od_taper", "HRC58_depth_raceway": "hardness.depth_mm.HRC58_bore_mid"}
+"""What is predicted for ring B (summary.json keys): size, crown, taper, hardness."""
+BAND_LIMIT_MM = 1.2
+"""A raceway-change band wider than this (5-95 %) cannot tell ring B's settings apart (issue 44)."""
+UPDATE_WIDTH = 0.5
+"""An input's shipped value is updated only when the data pin it (posterior 90 % width below this share of its
+prior's) and its posterior 90 % interval excludes the shipped value."""
+
+
+def _update(row: dict[str, Any]) -> bool:
+    return row["width_ratio"] < UPDATE_WIDTH and not row["factor_5pct"] <= 1.0 <= row["factor_95pct"]
 
 
 def run(workdir: Path) -> dict[str, Any]:
     t0 = time.perf_counter()
     spec = load_calibration(CAL_FILE)
-    out = Path(workdir).parents[1] / "calibration_ring_a" / code_fingerprint()[:12]
+    out = Path(workdir).parents[1] / "calibration_ring_a"
     result = calibrate(spec, out, workers=WORKERS)
     shutil.copyfile(out / "corner.png", Path(workdir) / "calibration_ring_a_corner.png")
-    mesh = spec.cases["ring_a"].mesh
-    keep = tuple(f"dimensions_mm.change.{k}" for k in DIMENSIONS)
+    case_spec = spec.cases["ring_a"]
     predictions: dict[str, Any] = {}
-    runs_ran = result["runs"]["ran_now"]
     for label, (case_file, condition) in PREDICTED.items():
-        case = load_case(ROOT / "cases" / case_file, condition).refined(mesh=mesh)
-        block = propagate(case, out / "predictions" / label, N_DRAWS, posterior=out, workers=WORKERS, keep=keep)
-        predictions[label] = {"band": {k: block["quantities"][f"dimensions_mm.change.{k}"] for k in DIMENSIONS},
-                              "samples": {k: block["samples"][f"dimensions_mm.change.{k}"] for k in DIMENSIONS},
-                              "runs_ok": block["runs_ok"],
-                              "HRC58_depth_bore_mm": block["quantities"]["hardness.depth_mm.HRC58_bore_mid"]}
-    trends = {}
-    for cond in ("A2", "A3"):
-        trends[cond] = {}
-        for k in ("id", "od"):
-            diff = np.array(predictions[cond]["samples"][k], dtype=float) - np.array(predictions["A1"]["samples"][k], dtype=float)
-            diff = diff[np.isfinite(diff)]
-            p5, p50, p95 = np.quantile(diff, [0.05, 0.5, 0.95])
-            trends[cond][k] = {"median": float(p50), "p5": float(p5), "p95": float(p95)}
-    measured = {k: next(m.value for m in spec.measurements if m.quantity.endswith(k)) for k in ("id", "od")}
-    a1 = predictions["A1"]["band"]
-    nominal = _nominal(out)
-    return {"calibration": result, "predictions": {k: {kk: vv for kk, vv in v.items() if kk != "samples"}
-                                                   for k, v in predictions.items()},
-            "trend_vs_condition_1": trends, "nominal_condition_1": nominal,
-            "condition_1_measured_inside_band": {k: bool(a1[k]["p5"] <= measured[k] <= a1[k]["p95"]) for k in measured},
-            "calibrated_run_id_change_mm": result["calibrated_run"][spec.measurements[0].label]["full_chain"],
-            "calibrated_run_od_change_mm": result["calibrated_run"][spec.measurements[1].label]["full_chain"],
-            "calibration_wall_time_min": result["wall_time_s"] / 60.0,
-            "calibration_runs_ran_now": runs_ran,
-            "full_chain_runs": result["full_chain_runs"] + N_DRAWS * len(PREDICTED),
-            "study_wall_time_min": (time.perf_counter() - t0) / 60.0, "out": str(out)}
+        from quenchsim.case import load_case
+
+        case = load_case(ROOT / "cases" / case_file, condition, dict(case_spec.overrides)).refined(mesh=case_spec.mesh)
+        block = propagate(case, out / "predictions" / label, N_DRAWS, posterior=out, workers=WORKERS,
+                          keep=tuple(BANDED.values()))
+        predictions[label] = {"band": {k: block["quantities"].get(q) for k, q in BANDED.items()},
+                              "runs_ok": block["runs_ok"], "discrepancy": block["discrepancy"],
+                              "samples": {k: block["samples"][q] for k, q in BANDED.items()}}
+    steps = {}
+    for a, b in (("B4", "B5"), ("B5", "B6")):
+        diff = (np.array(predictions[b]["samples"]["raceway"], dtype=float)
+                - np.array(predictions[a]["samples"]["raceway"], dtype=float))
+        diff = diff[np.isfinite(diff)]
+        p5, p50, p95 = np.quantile(diff, [0.05, 0.5, 0.95])
+        steps[f"{a}->{b}"] = {"median": float(p50), "p5": float(p5), "p95": float(p95)}
+    calibrated = result["calibrated_run"]
+    met = {label: row["met"] for label, row in calibrated.items()}
+    widths = {c: p["band"]["raceway"]["p95"] - p["band"]["raceway"]["p5"] for c, p in predictions.items()}
+    for p in predictions.values():
+        p.pop("samples")
+    return {"calibration": result, "predictions": predictions, "raceway_steps_model_alone": steps,
+            "observables_met": met, "observables_met_count": sum(bool(v) for v in met.values()),
+            "observables_count": len(met),
+            "calibrated_run_id_change_mm": calibrated["ring_a/1:dimensions_mm.change.id"]["full_chain"],
+            "calibrated_run_od_change_mm": calibrated["ring_a/1:dimensions_mm.change.od"]["full_chain"],
+            "order_met": all(v for k, v in met.items() if "t_to_500C_s - probes" in k),
+            "depth_met": all(v for k, v in met.items() if "traverse.bore@" in k),
+            "posterior_inputs_at_edge": [r["label"] for r in result["posterior"] if "edge" in r["identifiability"]],
+            "conflicting_pairs": [[c["a"], c["b"], c["chi2_pg"]] for c in result["conflicts"] if c["conflict"]],
+            "raceway_band_width_mm": widths, "raceway_band_width_max_mm": max(widths.values()),
+            "shipped_updates": [r["input"] for r in result["posterior"] if _update(r)],
+            "calibration_wall_time_min": result["wall_time_s"] / 60.0, "full_chain_runs": result["full_chain_runs"]
+            + N_DRAWS * len(PREDICTED), "study_wall_time_min": (time.perf_counter() - t0) / 60.0, "out": str(out)}
 
 
-def _nominal(out: Path) -> dict[str, float]:
-    import json
-
-    design = json.loads((out / "design.json").read_text())
-    row = next(p for p in design["points"] if p["role"] == "nominal")
-    return {k.split(":")[-1].split(".")[-1]: v for k, v in row.items() if k.startswith("ring_a/")}
+def _band(b: dict[str, float] | None, fmt: str = "+.3f") -> str:
+    return "-" if b is None else f"{b['median']:{fmt}} ({b['p5']:{fmt}} to {b['p95']:{fmt}})"
 
 
-def _band(b: dict[str, float], fmt: str = "+.3f") -> str:
-    return f"{b['median']:{fmt}} ({b['p5']:{fmt}} to {b['p95']:{fmt}})"
-
-
-def _outside(band: dict[str, Any], check: dict[str, Any]) -> str:
-    """Where each measured change lies against the full chain's 5-95 % band over the posterior, in words."""
-    parts = []
-    for k in ("id", "od"):
-        lo, hi, m = band[k]["p5"], band[k]["p95"], check[k]["measured"]
-        where = (f"{lo - m:.2f} mm below" if m < lo else f"{m - hi:.2f} mm above" if m > hi else "inside")
-        parts.append(f"{k.upper()} {m:+.2f} mm, {where} its band ({lo:+.3f} to {hi:+.3f})")
-    return "; ".join(parts)
-
-
-def _shape(check: dict[str, Any], cal: dict[str, Any]) -> str:
-    """The ring's shape (OD change - ID change, twice the wall's change) measured against the calibrated run."""
-    measured = check["od"]["measured"] - check["id"]["measured"]
-    full = cal["calibrated_run"][check["od"]["quantity"]]["full_chain"] - cal["calibrated_run"][check["id"]["quantity"]]["full_chain"]
-    return (f"Shape: the measured OD change minus ID change (twice the wall's thickening) is {measured:+.2f} mm; the "
-            f"calibrated full chain gives {full:+.3f} mm. The inputs calibrated here set the ring's size, not this "
-            "difference: over jet settings, a bath constant, the TRIP constants, the metastable austenite and a "
-            "pearlitic core it stayed 0.33-0.66 mm (docs/experiments/process_physics.md, 'can any input, or a pearlitic "
-            "core, give ring A its measured shape?'): a model-form finding, which calibrating cannot remove.")
+def _update_rows(cal: dict[str, Any]) -> list[str]:
+    rows = ["| input | shipped value | posterior median (5-95 %) | width / prior | updated? |", "|---|---|---|---|---|"]
+    for r in cal["posterior"]:
+        value = "-" if r["value"] is None else f"{r['value']:.4g}"
+        new = "-" if r["value"] is None else f"{r['value'] * r['factor_median']:.4g}"
+        rows.append(f"| `{r['input']}` | {value} | {new} (x{r['factor_median']:.3g}, {r['factor_5pct']:.3g}-"
+                    f"{r['factor_95pct']:.3g}) | {r['width_ratio']:.2f} | {'**yes**' if _update(r) else 'no'} |")
+    return rows
 
 
 def page(metrics: dict[str, Any]) -> str:
-    cal, pred, trend = metrics["calibration"], metrics["predictions"], metrics["trend_vs_condition_1"]
-    md = [f"Calibration file: `validation/calibration/ring_a/ring_a_c1.cal.toml` (mesh x2). "
-          f"{metrics['full_chain_runs']} full-chain runs in all ({cal['full_chain_runs']} for the calibration, "
-          f"{N_DRAWS} posterior draws x {len(PREDICTED)} predicted cases); calibration wall time "
-          f"{metrics['calibration_wall_time_min']:.1f} min ({metrics['calibration_runs_ran_now']} runs run in it, the rest "
-          f"from the cache), whole study {metrics['study_wall_time_min']:.1f} min, {WORKERS} Dask workers on the "
-          "shared 2-core machine.", "", "## Posterior", "", *posterior_rows(cal), "",
-          "Factors multiply the values of the inputs' data files (materials/SUJ3.mechanics.toml); the prior is log-uniform between the factor "
-          "bounds its range gives (quenchsim/calibration/inputs.py). The calibrated SUJ3 (posterior median) is written "
-          "as a new file in the calibration folder; the priors are untouched. Corner plot: "
-          "![corner](calibration_ring_a_corner.png)", "",
-          "## Ring A, condition 1: measured versus predicted", "",
-          "| dimension | measured change mm | nominal inputs (prior value) | posterior, surrogate: median (5-95 %) | "
-          "full chain at posterior median | full chain over the posterior: median (5-95 %) |", "|---|---|---|---|---|---|"]
-    check = {row["quantity"].split(".")[-1]: row for row in cal["predictive_check"]}
-    for k in ("id", "od"):
-        row = check[k]
-        full = cal["calibrated_run"][row["quantity"]]["full_chain"]
-        md.append(f"| {k.upper()} | {row['measured']:+.2f} +- {row['uncertainty']:.3f} | {metrics['nominal_condition_1'][k]:+.3f} | "
-                  f"{row['posterior_median']:+.3f} ({row['posterior_5pct']:+.3f} to {row['posterior_95pct']:+.3f}) | "
-                  f"{full:+.3f} | {_band(pred['A1']['band'][k])} |")
-    reached = all(row["reached"] for row in cal["predictive_check"])
-    edge = [r["label"] for r in cal["posterior"] if "edge" in r["identifiability"]]
-    misses = [f"{row['quantity'].split('.')[-1].upper()} by {abs(row['z']):.1f} sd" for row in cal["predictive_check"]
-              if not row["reached"]]
-    md += ["", ("The posterior reaches the measurements within two standard deviations."
-                if reached else "**Not reached within two standard deviations** by the posterior prediction: "
-                + ", ".join(misses) + " (the measurement's and the surrogate's uncertainty together).")
-           + (f" Inputs at the edge of their prior: {', '.join(edge)} -- the data push them beyond the published range: "
-              "a model-form discrepancy (missing physics or a wrong structure), not a calibration." if edge else ""), "",
-           _shape(check, cal), "",
-           "## Ring A, conditions 2 and 3: the report's trends", "",
-           "The report: faster cooling (condition 2) -> more martensite -> less shrinkage; slower cooling (condition 3) "
-           "-> less martensite -> more shrinkage. Paired posterior draws (the same inputs in every condition):", "",
-           "| condition | ID change mm | OD change mm | ID change - condition 1 | OD change - condition 1 | HRC58 depth bore mm |",
-           "|---|---|---|---|---|---|"]
-    for c, label in (("A1", "1"), ("A2", "2"), ("A3", "3")):
-        b = pred[c]["band"]
-        t = trend.get(c)
-        md.append(f"| {label} | {_band(b['id'])} | {_band(b['od'])} | {_band(t['id']) if t else '-'} | "
-                  f"{_band(t['od']) if t else '-'} | {_band(pred[c]['HRC58_depth_bore_mm'], '.1f')} |")
-    md += ["", "## Ring B, conditions 4-6: prediction with bands (ring B not used in the calibration)", "",
-           "| condition | raceway diameter (ID) change mm, median (5-95 %) | OD change mm | width change mm |",
-           "|---|---|---|---|"]
-    for c in ("B4", "B5", "B6"):
-        b = pred[c]["band"]
-        md.append(f"| {c[1]} | {_band(b['id'])} | {_band(b['od'])} | {_band(b['width'])} |")
-    md += ["", "The reference report prints no dimensions after quench for ring B (docs/reference/quench_cases.md, "
-           "validation/quench/ring_b/targets.toml): there is no measurement to set against these bands.", "",
-           "How to read the bands: they carry the posterior of the four inputs and nothing else"
-           + (" -- where the posterior sits at the edges of its priors (above) the band is narrow because the priors end "
-              "there, not because the prediction is known that well" if edge else "")
-           + f". Ring A condition 1's measured change lies outside its own band: {_outside(pred['A1']['band'], check)}. "
-           "An honest error bar for ring B adds that model-form discrepancy, which one measured ring cannot separate "
-           "from the inputs.", "",
-           "## Surrogate and screening", ""]
-    for k, h in cal["surrogate"]["holdout"].items():
-        md.append(f"* {k}: held-back RMS error {h['rms_error']:.3f} mm (largest {h['max_abs_error']:.3f}) over {h['n']} runs; "
-                  f"{100 * h['inside_own_90pct_band']:.0f} % inside the surrogate's own 90 % band.")
-    md += ["", "| measurement | input | Morris mu* (mm over the prior range) | Sobol S1 | Sobol ST |", "|---|---|---|---|---|"]
-    for k, s in cal["screening"].items():
-        for j, name in enumerate(s["inputs"]):
-            mu = s["morris"]["mu_star"][j] if s["morris"] else None
-            md.append(f"| {k.split(':')[-1]} | `{name.split('mechanics.')[-1]}` | {'-' if mu is None else f'{mu:.3f}'} | "
-                      f"{s['sobol_on_surrogate']['S1'][j]:.2f} | {s['sobol_on_surrogate']['ST'][j]:.2f} |")
+    cal, pred = metrics["calibration"], metrics["predictions"]
+    md = [f"Calibration file: `validation/calibration/ring_a/ring_a.cal.toml`. {metrics['full_chain_runs']} full-chain "
+          f"runs in all ({cal['full_chain_runs']} for the calibration, {N_DRAWS} posterior draws x {len(PREDICTED)} "
+          f"ring-B conditions); calibration wall time {metrics['calibration_wall_time_min']:.1f} min, whole study "
+          f"{metrics['study_wall_time_min']:.1f} min ({cal['runs']['ran_now']} runs run in it, the rest from the cache), "
+          f"{WORKERS} Dask workers on the shared 2-core machine.", "", cal.get("description", ""), "",
+          "## The data", "", *data_rows(cal), "",
+          "## Each datum against the posterior and the calibrated full chain", "",
+          f"{metrics['observables_met_count']} of {metrics['observables_count']} observables met within two of their "
+          "standard deviations by the full chain at the posterior median (default mesh).", "", *check_rows(cal), "",
+          "## Which data conflict", "", *conflict_rows(cal), "",
+          "## Which data pull which inputs where", "", *pull_rows(cal), "",
+          "## Posterior of the inputs", "", *posterior_rows(cal), "", "![corner](calibration_ring_a_corner.png)", "",
+          "## Model discrepancy", "", *discrepancy_rows(cal), "",
+          "## The shipped data: old and new", "",
+          f"An input's shipped value moves only where the data pin it (posterior 90 % width below {UPDATE_WIDTH:g} of "
+          "its prior's) and its posterior interval excludes the shipped value.", "", *_update_rows(cal), "",
+          "## Ring B, conditions 4-6: predictions with bands (ring B not used in the calibration)", "",
+          "Full chain over the posterior (the same draws in each condition), element sizes x2, the two-ID-row layout; "
+          "the dimensions carry the posterior's dimensions discrepancy (ring A's, taken over to ring B), the shape and "
+          "hardness bands the model's alone (no measured shape or hardness of a ring calibrates their discrepancy).", "",
+          "| quantity | " + " | ".join(f"condition {c[1]}" for c in PREDICTED) + " |",
+          "|---|" + "---|" * len(PREDICTED)]
+    for key in BANDED:
+        md.append(f"| {key} (mm) | " + " | ".join(_band(pred[c]["band"][key], ".2f" if "HRC" in key else "+.3f")
+                                                  for c in PREDICTED) + " |")
+    steps = metrics["raceway_steps_model_alone"]
+    md += ["", "Raceway change between the report's designed steps, paired draws, the model alone (the discrepancy, a "
+           "constant of the ring, cancels): " + "; ".join(f"{k}: {_band(v)}" for k, v in steps.items()) + ".", "",
+           f"Widest raceway band (5-95 %): {metrics['raceway_band_width_max_mm']:.3f} mm (limit {BAND_LIMIT_MM:g} mm "
+           "for a band that tells settings apart).", "",
+           "## Cheap against full fidelity", "", *fidelity_rows(cal), ""]
     return "\n".join(md)
