@@ -220,3 +220,13 @@ def test_likelihood_terms_are_the_gaussian_and_the_probit_with_the_discrepancy_a
     assert terms[0] == pytest.approx(norm.logpdf(1.0, 1.5, np.sqrt(0.3**2 + 0.1**2 + 0.5**2)))
     assert terms[1] == pytest.approx(norm.logcdf((1.8 - 2.0) / np.sqrt(0.4**2 + 0.2**2 + 0.5**2)))
     assert lk.misfit(u)[0] == pytest.approx(0.5**2 / 0.1 - 2 * norm.logcdf(-0.2 / np.sqrt(0.2)))
+
+
+def test_the_guides_example_reads_and_holds_every_kind():
+    """docs/guide/calibrate_example: the calibration file the guide runs loads with all its data files."""
+    from quenchsim.calibration import load_calibration
+
+    folder = Path(__file__).resolve().parents[1] / "docs" / "guide" / "calibrate_example"
+    spec = load_calibration(folder / "ring.cal.toml")
+    assert {m.kind for m in spec.measurements} == {"curve", "order", "traverse", "bound", "value"}
+    assert len(spec.observables) == 18 and [g.name for g in spec.discrepancy] == ["probes"]
