@@ -17,7 +17,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from quenchsim.calibration import calibrate, load_calibration
-    from quenchsim.calibration.page import posterior_rows
+    from quenchsim.calibration.page import discrepancy_rows, posterior_rows
     from quenchsim.errors import require
 
     require(args.workers >= 0, "--workers", args.workers, "must be >= 0")
@@ -32,5 +32,13 @@ def run(args: argparse.Namespace) -> int:
               f"again to continue ({out})")
         return 3
     print("\n".join(posterior_rows(result)))
+    if result["discrepancy"]:
+        print("\n".join(["", *discrepancy_rows(result)]))
+    unmet = [k for k, row in result["calibrated_run"].items() if row["met"] is False]
+    conflicts = [c for c in result["conflicts"] if c["conflict"]]
+    print(f"\n{len(result['calibrated_run']) - len(unmet)} of {len(result['calibrated_run'])} observables met by the full "
+          f"chain at the posterior median" + (f"; not met: {', '.join(unmet)}" if unmet else ""))
+    for c in conflicts:
+        print(f"conflict: {c['a']} / {c['b']} (chi2_PG {c['chi2_pg']:.1f})")
     print(f"{result['full_chain_runs']} full-chain runs, {result['wall_time_s']:.0f} s; see {out / 'calibration.md'}")
     return 0
