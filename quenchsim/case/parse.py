@@ -205,6 +205,7 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
         austenitising_temperature_C=_number(p, "austenitising_temperature_C", "process.austenitising_temperature_C",
                                             minimum=600.0, maximum=1200.0),
         room_temperature_C=_number(p, "room_temperature_C", "process.room_temperature_C", minimum=-50.0, maximum=100.0))
+    _austenitising_in_range(material, process.austenitising_temperature_C)
     t = _table(data, "transfer")
     transfer = TransferStage(time_s=_number(t, "time_s", "transfer.time_s", minimum=0.0),
                              temperature_C=_number(t, "temperature_C", "transfer.temperature_C", minimum=-50.0,
@@ -258,6 +259,17 @@ def _material(data: Mapping[str, Any], case_path: Path | None) -> str:
         name = str(file.resolve())
     transforms(load_material(name))
     return name
+
+
+def _austenitising_in_range(material: str, T_aust_C: float) -> None:
+    """The austenitising temperature within the steel's tabulated range (a transforming steel's dissolved carbon, Ms
+    and kinetics are known there only; outside it a run failed later, after writing its first files)."""
+    from quenchsim.materials import load_material, transforms
+    from quenchsim.metallurgy.kinetics import check_austenitising_temperature
+
+    steel = load_material(material)
+    if transforms(steel):
+        check_austenitising_temperature(steel, T_aust_C, "process.austenitising_temperature_C")
 
 
 def _htc_tables(spec: Any, field: str, segments: list[str]) -> Mapping[str, Any]:
