@@ -43,3 +43,54 @@ def test_an_austenitising_temperature_outside_the_steels_table_is_refused_before
     assert rc == 2 and len(err.splitlines()) == 1, err
     assert f"process.austenitising_temperature_C = {T_aust}" in err and "815-880 C" in err and "SUJ3" in err
     assert not out.exists()
+
+
+# -- 6. messages that point the right way --------------------------------------------------------------------------
+
+def _case_with(tmp_path: Path, old: str, new: str) -> Path:
+    text = (CASES / "crb_outer_ring.toml").read_text()
+    assert old in text
+    path = tmp_path / "ring.toml"
+    path.write_text(text.replace(old, new, 1))
+    return path
+
+
+def _one_line_error(capsys, argv: list[str]) -> str:
+    rc = main(argv)
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and len(err.splitlines()) == 1, err
+    return err
+
+
+@pytest.mark.parametrize("old, typo, meant", [
+    ("inner_diameter_mm = 218.3", "inner_diamter_mm = 218.3", "inner_diameter_mm"),   # a required key: was "is required"
+    ("chamfer_mm = 2.0", "chamfr_mm = 2.0", "chamfer_mm"),                             # an optional one: was ignored
+    ("time_s = 900.0", "tme_s = 900.0", "time_s"),                                     # [quench]
+])
+def test_a_misspelt_key_is_named_with_the_key_it_was_meant_to_be(tmp_path, capsys, old, typo, meant):
+    case = _case_with(tmp_path, old, typo)
+    err = _one_line_error(capsys, ["run", str(case), "--condition", "1", "--out", str(tmp_path / "run"), "--quiet"])
+    assert f".{typo.split()[0]} = " in err and "unknown key" in err and f"did you mean {meant}?" in err
+    assert "is required" not in err and not (tmp_path / "run").exists()
+
+
+def test_an_empty_case_file_is_named_as_empty_not_as_a_missing_condition(tmp_path, capsys):
+    empty = tmp_path / "empty.toml"
+    empty.write_text("\n# nothing yet\n")
+    err = _one_line_error(capsys, ["run", str(empty), "--condition", "1", "--out", str(tmp_path / "run")])
+    assert "empty.toml" in err and "empty" in err.split(":", 1)[1] and "--condition" not in err
+
+
+def test_a_truncated_case_file_is_named_as_such_not_as_a_missing_condition(tmp_path, capsys):
+    """Cut at a line before its [conditions] tables, the file still parses: the error is about the file."""
+    text = (CASES / "crb_outer_ring.toml").read_text()
+    cut = tmp_path / "cut.toml"
+    cut.write_text(text[:text.index("[[probes]]")])
+    err = _one_line_error(capsys, ["run", str(cut), "--condition", "1", "--out", str(tmp_path / "run")])
+    assert "cut.toml has no [conditions." in err and "truncated" in err
+
+
+def test_a_misspelt_table_is_named_with_the_table_it_was_meant_to_be(tmp_path, capsys):
+    case = _case_with(tmp_path, "[process]", "[proces]")
+    err = _one_line_error(capsys, ["run", str(case), "--condition", "1", "--out", str(tmp_path / "run")])
+    assert err.startswith("quenchsim: error: proces = ") and "did you mean process?" in err
