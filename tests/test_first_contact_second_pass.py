@@ -94,3 +94,15 @@ def test_a_misspelt_table_is_named_with_the_table_it_was_meant_to_be(tmp_path, c
     case = _case_with(tmp_path, "[process]", "[proces]")
     err = _one_line_error(capsys, ["run", str(case), "--condition", "1", "--out", str(tmp_path / "run")])
     assert err.startswith("quenchsim: error: proces = ") and "did you mean process?" in err
+
+
+def test_a_probe_curve_in_kelvin_is_refused_with_a_hint_to_give_degrees_c(tmp_path, capsys, monkeypatch):
+    """The first-hour probe curve with its temperatures in K said only "never reaches 300 C"."""
+    lines = [ln for ln in (ROOT / "docs" / "guide" / "first_hour_probe_curve.csv").read_text().splitlines()
+             if not ln.startswith("#")]
+    rows = [ln.split(",") for ln in lines[1:]]
+    (tmp_path / "curve_K.csv").write_text(lines[0] + "\n" + "".join(f"{t},{float(T) + 273.15:.2f}\n" for t, T in rows))
+    monkeypatch.chdir(tmp_path)
+    err = _one_line_error(capsys, ["quenchant", "fit", "curve_K.csv", "--fast"])
+    assert "never reaches 300 C" in err and "is it in K?" in err
+    assert not (tmp_path / "materials").exists()
