@@ -9,6 +9,7 @@ import logging
 from pathlib import Path
 
 from quenchsim.case import load_case
+from quenchsim.commands.mesh_limit import MAX_TRIANGLES, refuse_large_mesh
 from quenchsim.errors import InputError
 from quenchsim.results import files
 from quenchsim.shipped import resolve_case
@@ -41,7 +42,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="continue the interrupted run of this case in --out from its checkpoint")
     parser.add_argument("--force", action="store_true",
                         help="write into --out even when it is a non-empty folder that is not a quenchsim run (a "
-                             "run folder's earlier outputs are always replaced)")
+                             "run folder's earlier outputs are always replaced), and mesh above "
+                             f"{MAX_TRIANGLES:,} estimated triangles")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     parser.add_argument("--json", action="store_true", help="print the key results as JSON instead of a table")
     parser.add_argument("--uncertainty", type=int, metavar="N",
@@ -60,6 +62,7 @@ def run(args: argparse.Namespace) -> int:
         if args.mesh_size <= 0:
             raise InputError("--mesh-size", args.mesh_size, "must be > 0 (mm)")
         case = case.with_mesh_size(args.mesh_size)
+    refuse_large_mesh(case, args.force)
     out = args.out or Path("runs") / f"{case.name}_{case.condition or 'base'}"
     if args.uncertainty is not None:   # checked before the run starts
         from quenchsim.calibration.propagate import uncertain_inputs
