@@ -80,6 +80,21 @@ line sets these to 1 for its own process unless the user set them; a library use
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run one command (``argv``, default the process's arguments); the exit status: 0, 1 (a study or sweep missed or
+    failed), 2 (bad input, one line on stderr), 130 (interrupted), 141 (the reader of stdout went away)."""
+    try:
+        try:
+            return _command(argv)
+        finally:
+            sys.stdout.flush()   # here, where a closed pipe can still be caught
+    except BrokenPipeError:
+        # the reader stopped reading (`quenchsim ... | head`): stop quietly, as a command killed by SIGPIPE; stdout
+        # goes to /dev/null so that the interpreter's flush at exit does not raise again
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
+
+
+def _command(argv: list[str] | None) -> int:
     for var in SINGLE_THREAD_BLAS:
         os.environ.setdefault(var, "1")
     if argv is not None:
@@ -97,11 +112,7 @@ def main(argv: list[str] | None = None) -> int:
             verb = importlib.import_module(args._bearing_module)
             check_ranges(args, getattr(verb, "RANGES", {}))
             result = verb.run(args)
-            if args.json:
-                print(json.dumps(result, default=float))
-            else:
-                for key, value in result.items():
-                    print(f"{key}: {value}")
+            print(json.dumps(result, default=float) if args.json else "\n".join(plain_lines(result)))
             return 0
         return int(importlib.import_module(args._module).run(args) or 0)
     except (RunInterrupted, KeyboardInterrupt) as exc:
@@ -110,6 +121,35 @@ def main(argv: list[str] | None = None) -> int:
     except QuenchsimError as exc:
         print(f"quenchsim: error: {exc}", file=sys.stderr)
         return 2
+
+
+def plain_lines(value: object, indent: str = "") -> list[str]:
+    """A bearing verb's result as text, one ``key: value`` line per entry: tables nested by indent, a list of tables
+    as one ``- key value, ...`` line per item, numbers to 6 significant digits."""
+    if isinstance(value, dict):
+        lines = []
+        for key, item in value.items():
+            if isinstance(item, dict) or (isinstance(item, list) and any(isinstance(x, dict) for x in item)):
+                lines += [f"{indent}{key}:", *plain_lines(item, indent + "  ")]
+            else:
+                lines.append(f"{indent}{key}: {_plain_value(item)}")
+        return lines
+    if isinstance(value, list):
+        return [f"{indent}- " + (", ".join(f"{k} {_plain_value(v)}" for k, v in item.items()) if isinstance(item, dict)
+                                else _plain_value(item)) for item in value]
+    return [f"{indent}{_plain_value(value)}"]
+
+
+def _plain_value(value: object) -> str:
+    if isinstance(value, bool) or value is None:
+        return str(value).lower() if value is not None else "-"
+    if isinstance(value, float):
+        return format(value, ".6g")
+    if isinstance(value, (list, tuple)):
+        return ", ".join(_plain_value(v) for v in value)
+    if isinstance(value, dict):
+        return "; ".join(f"{k} {_plain_value(v)}" for k, v in value.items())
+    return str(value)
 
 
 if __name__ == "__main__":

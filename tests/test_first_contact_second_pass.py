@@ -178,3 +178,184 @@ def test_ttt_holds_in_kelvin_that_stop_the_fit_say_kelvin(tmp_path, monkeypatch,
     err = _one_line_error(capsys, ["material", "fit", "K.toml"])
     assert "fit.bainite.tau_ref_s" in err and "were they given in K?" in err
     assert not (tmp_path / "materials").exists()
+
+
+# -- 5. absurd mesh sizes: the element count estimated and refused before meshing ---------------------------------
+
+@pytest.mark.parametrize("argv", [
+    ["run", "crb_outer_ring", "--condition", "1", "--mesh-size", "0.05"],
+    ["run", "crb_outer_ring", "--condition", "1", "--set", "mesh.surface_size_mm=0.01"],
+    ["mesh", "crb_outer_ring", "--condition", "1", "--mesh-size", "0.05"],
+])
+def test_an_absurd_mesh_size_is_refused_with_its_element_count_before_any_work(tmp_path, capsys, argv):
+    """--mesh-size 0.05 or a surface size of 0.01 mm meshed or solved for minutes with no output."""
+    from quenchsim.commands.mesh_limit import MAX_TRIANGLES
+
+    out = ["--out", str(tmp_path / ("run" if argv[0] == "run" else "ring.msh"))]
+    err = _one_line_error(capsys, [*argv, *out])
+    count = int(err.split("about ")[1].split(" triangles")[0].replace(",", ""))
+    assert count > MAX_TRIANGLES and f"{MAX_TRIANGLES:,}" in err and "--force" in err
+    assert not any(tmp_path.iterdir())
+
+
+def test_the_element_count_estimate_is_close_to_gmshs():
+    """The estimate the refusal quotes, against the mesher's count on ring A at its own sizes and 2.5x finer."""
+    from quenchsim.case import load_case
+    from quenchsim.geometry.mesher import estimated_triangles, mesh_profile
+    from quenchsim.geometry.profile import MM
+
+    for factor in (1.0, 0.4):
+        case = load_case(CASES / "crb_outer_ring.toml", "1").refined(mesh=factor)
+        sizes = (case.mesh.size_mm * MM, case.mesh.surface_size_mm * MM, case.mesh.surface_layer_mm * MM)
+        assert estimated_triangles(case.profile, *sizes) == pytest.approx(mesh_profile(case.profile, *sizes).n_elements,
+                                                                          rel=0.1)
+
+
+def test_a_sweep_with_an_absurd_mesh_size_is_refused_before_any_case_runs(tmp_path, capsys):
+    sweep = tmp_path / "fine.toml"
+    sweep.write_text(f'[sweep]\ncase = "{(CASES / "crb_outer_ring.toml").as_posix()}"\ncondition = "1"\n'
+                     '[set]\n"mesh.surface_size_mm" = 0.01\n[grid]\n"quench.time_s" = [600.0, 900.0]\n')
+    err = _one_line_error(capsys, ["sweep", str(sweep), "--workers", "0", "--out", str(tmp_path / "out")])
+    assert "surface_size_mm 0.01" in err and "--force" in err and not (tmp_path / "out").exists()
+
+
+# -- 4. a shipped name works in every command that takes a case or a data file ------------------------------------
+
+@pytest.mark.parametrize("argv", [
+    ["mesh", "crb_outer_ring", "--condition", "1", "--mesh-size", "15"],
+    ["bath", "crb_outer_ring", "--condition", "1"],
+    ["bearings", "runout", "runout_695_balls", "--no-plots", "--json"],
+    ["bearings", "big-end", "big_end_two_stroke", "--revolutions", "0.2", "--json"],
+])
+def test_a_shipped_case_name_works_beyond_run(tmp_path, monkeypatch, capsys, argv):
+    """`quenchsim cases` lists them, but mesh, bath, sweep and bearings runout said "file not found" for a name."""
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 0, capsys.readouterr().err
+
+
+def test_a_sweep_file_runs_by_its_shipped_name(tmp_path, monkeypatch, capsys):
+    """`quenchsim sweep sweep_nozzles` (the cases themselves are not run here: run_sweep records what it is given)."""
+    import quenchsim.sweep
+
+    given = {}
+
+    def record(spec, out, **options):
+        given.update(spec=spec, out=out)
+        return quenchsim.sweep.SweepOutcome(out_dir=Path(out), rows=[], skipped=0, ran=0, failed=0, pending=0,
+                                            wall_time_s=0.0)
+
+    monkeypatch.setattr(quenchsim.sweep, "run_sweep", record)
+    monkeypatch.chdir(tmp_path)
+    assert main(["sweep", "sweep_nozzles", "--workers", "0", "--out", "out"]) == 0, capsys.readouterr().err
+    assert given["spec"].case_path == (CASES / "crb_outer_ring.toml").resolve() and len(given["spec"].points) == 6
+
+
+def test_a_guides_cases_path_that_is_not_here_points_to_the_shipped_name(tmp_path, monkeypatch, capsys):
+    """From a wheel (or another folder) `cases/crb_outer_ring.toml` is not there: the error says to give the name."""
+    monkeypatch.chdir(tmp_path)
+    err = _one_line_error(capsys, ["run", "cases/crb_outer_ring.toml", "--condition", "1"])
+    assert "no such file" in err and "give its name, crb_outer_ring" in err
+    assert not (tmp_path / "runs").exists()
+
+
+def test_a_shape_start_file_is_found_by_its_name(tmp_path, monkeypatch):
+    """`--shape-from materials/quenchants/data/bt2013_start_shape.toml` fails outside the checkout; the name works."""
+    from quenchsim.fitting.quenchant import default_shape
+
+    monkeypatch.chdir(tmp_path)
+    by_name = default_shape("bt2013_start_shape")
+    by_path = default_shape(str(ROOT / "materials" / "quenchants" / "data" / "bt2013_start_shape.toml"))
+    assert by_name == by_path
+
+
+def test_material_fit_takes_a_shipped_data_file_by_name(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    from quenchsim.commands.material import data_file_path
+
+    assert data_file_path("100Cr6_kawulok2020_kaymak2007") == ROOT / "materials" / "data" / "100Cr6_kawulok2020_kaymak2007.toml"
+
+
+FENCE_BASH = "```bash\n"
+
+
+def guide_bash_commands(guide: Path, after: str) -> list[str]:
+    """The commands of the first ```bash block after the heading ``after`` (``\\``-continued lines joined)."""
+    text = guide.read_text()
+    start = text.index(FENCE_BASH, text.index(after)) + len(FENCE_BASH)
+    body = text[start:text.index("```", start)].replace("\\\n", " ")
+    return [" ".join(ln.split()) for ln in body.splitlines() if ln.strip()]
+
+
+def test_from_datasheet_as_the_oil_guide_writes_it_works_from_the_checkout(tmp_path, monkeypatch, capsys):
+    """bring_an_oil.md's data-sheet command failed from the checkout (its default out, ./materials, is the shipped
+    folder there) and from a project folder (--shape-from a checkout path). Run here in a folder whose ./materials is
+    the shipped folder, as in the checkout; the wheel test runs it from a project folder."""
+    import shlex
+
+    (tmp_path / "materials").symlink_to(ROOT / "materials", target_is_directory=True)
+    monkeypatch.chdir(tmp_path)
+    commands = guide_bash_commands(ROOT / "docs" / "guide" / "bring_an_oil.md", "## From the data-sheet figures")
+    assert [c.split()[:3] for c in commands] == [["quenchsim", "quenchant", "from-datasheet"],
+                                                 ["quenchsim", "quenchant", "show"]]
+    for command in commands:
+        assert main(shlex.split(command)[1:]) == 0, capsys.readouterr().err
+    assert capsys.readouterr().out.count("NAME: bath 60 C") == 1
+    assert (tmp_path / "my_data" / "quenchants" / "NAME.toml").is_file()
+    assert not (ROOT / "materials" / "quenchants" / "NAME.toml").exists()
+
+
+def test_the_guides_example_files_are_shipped_and_copied_by_name(tmp_path, monkeypatch, capsys):
+    """first_hour_probe_curve.csv and first_hour_ttt.toml were not in the wheel: shipped now, listed and copied."""
+    from quenchsim.shipped import shipped_examples
+
+    assert {p.name for p in shipped_examples()} >= {"first_hour_probe_curve.csv", "first_hour_ttt.toml"}
+    monkeypatch.chdir(tmp_path)
+    for name in ("first_hour_probe_curve.csv", "first_hour_ttt"):
+        assert main(["cases", "copy", name]) == 0
+    assert (tmp_path / "first_hour_ttt.toml").read_text() == FIRST_HOUR_TTT.read_text()
+    assert (tmp_path / "first_hour_probe_curve.csv").is_file()
+
+
+# -- 8. the small ones ------------------------------------------------------------------------------------------
+
+def test_cases_lists_whole_first_sentences(capsys):
+    """Descriptions taken from a file's first comment line were cut mid-sentence ("crank-pin centre fixed,")."""
+    assert main(["cases"]) == 0
+    rows = [ln for ln in capsys.readouterr().out.splitlines() if not ln.startswith("example files")]
+    from quenchsim.shipped import shipped_cases
+
+    import tomllib
+
+    commented = {c.name for c in shipped_cases() if "description" not in tomllib.loads(c.path.read_text())}
+    assert commented >= {"big_end_rig", "runout_695_balls"}
+    for row in rows:
+        name, text = row.split(maxsplit=1)
+        if name in commented:
+            assert text.endswith("."), row
+
+
+@pytest.mark.parametrize("argv", [["cases"], ["--help"], ["ttt", "SUJ2"]])
+def test_a_reader_that_stops_reading_ends_the_command_quietly(argv):
+    """`quenchsim ... | head` printed a BrokenPipeError traceback."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    proc = subprocess.Popen([sys.executable, "-m", "quenchsim.cli", *argv], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, env=env)
+    proc.stdout.close()   # the reader is gone before the command writes
+    err = proc.stderr.read().decode()
+    rc = proc.wait(timeout=120)
+    assert "Traceback" not in err and "BrokenPipe" not in err, err
+    assert rc == (0 if argv == ["--help"] else 141)   # argparse ignores a failed write of its help
+
+
+def test_bearings_runout_prints_its_peaks_as_lines_not_a_python_list(tmp_path, capsys):
+    """`quenchsim bearings runout` printed `peaks: [{'direction': 'x', ...}, ...]`."""
+    assert main(["bearings", "runout", "runout_695_inner9", "--no-plots", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "[{" not in out and "{'" not in out
+    lines = out.splitlines()
+    peaks = lines[lines.index("peaks:") + 1:]
+    assert peaks[0].startswith("  - direction x, frequency_hz 175.09")

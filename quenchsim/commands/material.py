@@ -28,14 +28,16 @@ from quenchsim.fitting import fit_quality as fq
 from quenchsim.fitting import kinetics as fk
 from quenchsim.fitting.diagram_data import load_diagram_data
 from quenchsim.materials import USER_DATA_FOLDER, find_data_file
-from quenchsim.shipped import refuse_shipped_file
+from quenchsim.shipped import is_bare_name, refuse_shipped_file
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
     sub = parser.add_subparsers(dest="action", required=True)
     fit = sub.add_parser("fit", help="fit a steel's transformation kinetics to CCT / TTT / Jominy data")
-    fit.add_argument("data_file", metavar="DATA.toml", type=Path, help="CCT / TTT / Jominy data file; a complete example: docs/guide/bring_a_steel.md, the "
-                     "schema: python3 -m pydoc quenchsim.fitting.diagram_data")
+    fit.add_argument("data_file", metavar="DATA.toml",
+                     help="CCT / TTT / Jominy data file, or the name of one in a data folder's data/ (e.g. the shipped "
+                          "100Cr6_kawulok2020_kaymak2007); a complete example: docs/guide/bring_a_steel.md, the "
+                          "schema: python3 -m pydoc quenchsim.fitting.diagram_data")
     fit.add_argument("--out", type=Path, help="material file to write (default: materials/DATA.toml in the current "
                                               "folder, where a run finds it by name)")
     add_data_option(fit)
@@ -46,7 +48,15 @@ def configure(parser: argparse.ArgumentParser) -> None:
                           "materials/data/SUJ3_from_100Cr6.toml); its name and description are kept")
 
 
+def data_file_path(value: str) -> Path:
+    """The data file of ``material fit``: a path, or a bare name (:func:`quenchsim.shipped.is_bare_name`) found in the
+    ``data/`` folder of the data folders (:func:`quenchsim.materials.find_data_file`; the shipped
+    ``materials/data/`` last)."""
+    return find_data_file(value, "data", field="DATA.toml") if is_bare_name(value) else Path(value)
+
+
 def run(args: argparse.Namespace) -> int:
+    args.data_file = data_file_path(args.data_file)   # after --data is applied (quenchsim.cli.main)
     out = args.out or Path(USER_DATA_FOLDER) / f"{args.data_file.stem}.toml"
     if not args.replace_shipped:
         refuse_shipped_file(out, hint="maintainers regenerating it: --replace-shipped")

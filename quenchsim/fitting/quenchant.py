@@ -472,8 +472,9 @@ shortcut keeps: the one oil fitted to all six published D6200 figures (materials
 
 
 def default_shape(name: str = SHORTCUT_SHAPE_OIL) -> CurveShape:
-    """The ``[shape]`` table of a quenchant file (a data-sheet fit) or of a start-shape file."""
-    data = load_data_file(name, "quenchants", "--shape-from")
+    """The ``[shape]`` table of a quenchant file (a data-sheet fit) or of a start-shape file (``quenchants/data/``,
+    e.g. ``bt2013_start_shape``), by name or path."""
+    data = load_data_file(name, ("quenchants", "quenchants/data"), "--shape-from")
     shape = data.get("shape")
     if not isinstance(shape, dict):
         raise InputError("--shape-from", name, "has no [shape] table (h_film_W_m2K, transition_K, h_peak_W_m2K, "
