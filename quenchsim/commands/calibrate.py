@@ -11,7 +11,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("calibration", type=Path, help="calibration file (TOML; see quenchsim.calibration.spec)")
     parser.add_argument("--out", type=Path, help="output directory (default runs/calibration_<name>)")
     parser.add_argument("--workers", type=int, default=2, help="Dask worker processes (0: runs in this process)")
-    parser.add_argument("--max-runs", type=int, help="stop after this many new full-chain runs (run again to go on)")
+    parser.add_argument("--max-runs", type=int, help="stop after this many new full-chain runs (run again to go on); "
+                                                     "a call that stops before the design is complete exits with 3")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
