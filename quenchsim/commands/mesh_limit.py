@@ -12,7 +12,9 @@ from quenchsim.errors import InputError
 
 MAX_TRIANGLES = 100_000
 """Largest estimated triangle count meshed without ``--force``: about 40 times ring A's reference mesh (2,300
-triangles, a 40-60 s run on two cores), a run of hours."""
+triangles, ~20 s of CPU, a 40-60 s run on two cores). Measured on ring A condition 1 with ``--mesh-size 2`` (12,480
+triangles): 145 s of CPU, so the CPU time grows a little faster than the count and a run at the limit takes half an
+hour of CPU or more -- a size typed in the wrong unit, or a convergence check that asks for ``--force``."""
 
 
 def refuse_large_mesh(case: Any, force: bool) -> int:
