@@ -4,6 +4,7 @@ errors that point the right way and come before any work, lengths in fixed decim
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -17,15 +18,57 @@ CASES = ROOT / "cases"
 
 # -- 1. the sweep example ends ok ------------------------------------------------------------------------------
 
-def test_the_sweep_examples_slowest_cooling_case_ends_at_room_temperature(tmp_path):
-    """cases/sweep_nozzles.toml cut the air stage to 300 s: all six cases ended `hot` (up to 58 C). Its slowest
-    cooling case (the weakest ID and OD jets) must now end `ok`, cooled to room temperature."""
+@pytest.fixture(scope="module")
+def slowest_sweep_case(tmp_path_factory) -> dict:
+    """The slowest-cooling case of cases/sweep_nozzles.toml (the weakest ID and OD jets), run as the sweep runs it
+    (~15 s): a ring with mechanics on a coarse mesh, also the run whose outputs the length formats are read on."""
     spec = load_sweep(CASES / "sweep_nozzles.toml")
     slowest = min(spec.points, key=lambda p: (p["quench.bath.od_jet_speed_mm_s"], p["quench.bath.id_jet_speed_mm_s"]))
-    result = run_point(spec.raw_case, str(spec.case_path), spec.condition, spec.overrides(slowest),
-                       str(tmp_path / "slowest"))
+    out = tmp_path_factory.mktemp("sweep_case") / "slowest"
+    return {"out": out, **run_point(spec.raw_case, str(spec.case_path), spec.condition, spec.overrides(slowest),
+                                    str(out))}
+
+
+def test_the_sweep_examples_slowest_cooling_case_ends_at_room_temperature(slowest_sweep_case):
+    """cases/sweep_nozzles.toml cut the air stage to 300 s: all six cases ended `hot` (up to 58 C). Its slowest
+    cooling case must now end `ok`, cooled to room temperature."""
+    result = slowest_sweep_case
     assert result["error"] is None
     assert result["status"] == "ok" and result["summary"]["end_state"]["at_room_temperature"]
+
+
+# -- 7. lengths in fixed decimals of a mm ------------------------------------------------------------------------
+
+def _cells(markdown: str, first: str) -> list[str]:
+    row = next(ln for ln in markdown.splitlines() if ln.startswith(f"| {first} |"))
+    return [c.strip() for c in row.strip("|").split("|")][1:]
+
+
+def test_the_reports_lengths_have_three_decimals_of_a_mm(slowest_sweep_case, tmp_path):
+    """The report rounded lengths to 4 significant figures: "id | 218.3 | 218 | -0.3129"."""
+    from quenchsim.report.run_report import write_report
+
+    write_report([slowest_sweep_case["out"]], tmp_path / "r.html")
+    md = (tmp_path / "r.md").read_text()
+    s = slowest_sweep_case["summary"]
+    three = re.compile(r"^[+-]?\d+\.\d{3}$")
+    for first in ("id", "od", "width", "bore_at_mid", "od_taper", "depth to 58 HRC, HRC58_od_mid (mm)"):
+        cells = [c for c in _cells(md, first) if c != "-"]
+        assert cells and all(three.match(c) for c in cells), (first, cells)
+    assert _cells(md, "id")[:2] == [f"{s['dimensions_mm']['before']['id']:.3f}", f"{s['dimensions_mm']['after']['id']:.3f}"]
+    budget = _cells(md, "total (after - before)")
+    assert all(three.match(c) for c in budget[:3]) and not three.match(budget[3])   # the last is an area, mm2
+
+
+def test_the_terminal_tables_lengths_have_three_decimals_of_a_mm(slowest_sweep_case):
+    from quenchsim.commands.run import summary_table
+
+    table = summary_table(slowest_sweep_case["summary"], slowest_sweep_case["out"])
+    depth = next(ln for ln in table.splitlines() if ln.startswith("HRC58 depth"))
+    assert re.findall(r"(?:bore|od) (\S+?)[,;]", depth) and all(
+        re.fullmatch(r"\d+\.\d{3}", v) for v in re.findall(r"(?:bore|od) (\S+?)[,;]", depth))
+    taper = next(ln for ln in table.splitlines() if ln.startswith("bore taper")).split()[2:]
+    assert all(re.fullmatch(r"[+-]?\d+\.\d{3}", v) for v in taper), taper
 
 
 # -- 3. the austenitising temperature against the steel's table, at load -----------------------------------------

@@ -11,6 +11,7 @@ from pathlib import Path
 from quenchsim.case import load_case
 from quenchsim.commands.mesh_limit import MAX_TRIANGLES, refuse_large_mesh
 from quenchsim.errors import InputError
+from quenchsim.report.lengths import LENGTH_DECIMALS, mm
 from quenchsim.results import files
 from quenchsim.shipped import resolve_case
 
@@ -108,8 +109,7 @@ def summary_table(s: dict, out: Path) -> str:
                         f"the wall); core {h['core_HRC']:.1f} HRC")
         else:
             rows.append("HRC58 depth at mid-width (mm): "
-                        + ", ".join(f"{k.split('_')[1]} {'-' if v is None else f'{v:.2f}'}"
-                                    for k, v in h["depth_mm"].items())
+                        + ", ".join(f"{k.split('_')[1]} {mm(v)}" for k, v in h["depth_mm"].items())
                         + f"; core {h['core_HRC']:.1f} HRC")
     rows += [f"note: {note}" for note in s.get("notes", [])]
     if "dimensions_mm" not in s:   # never a silence that reads as "unchanged"
@@ -120,8 +120,9 @@ def summary_table(s: dict, out: Path) -> str:
         rows.append(f"{'dimension (mm)':<16}{'before':>10}{'after':>10}{'change':>10}"
                     + (f"{'measured':>10}{'sim - meas':>12}" if m else ""))
         for k in d["change"]:
-            rows.append(f"{k:<16}{d['before'][k]:>10.3f}{d['after'][k]:>10.3f}{d['change'][k]:>+10.3f}"
-                        + (f"{m[k]['measured']:>+10.3f}{m[k]['simulated_minus_measured']:>+12.3f}" if k in m else ""))
+            rows.append(f"{k:<16}{mm(d['before'][k]):>10}{mm(d['after'][k]):>10}{d['change'][k]:>+10.{LENGTH_DECIMALS}f}"
+                        + (f"{m[k]['measured']:>+10.{LENGTH_DECIMALS}f}"
+                           f"{m[k]['simulated_minus_measured']:>+12.{LENGTH_DECIMALS}f}" if k in m else ""))
         if m:
             rows.append(f"measured: {s['measured']['source']}")
     if "shape_mm" in s:
@@ -137,9 +138,9 @@ def shape_rows(shape: dict) -> list[str]:
     """The inspector's shape measures (summary.json ``shape_mm``) as table rows: before, after, change (mm)."""
     g = shape["gauge"]["heights_before_mm"]
     rows = [f"{'shape (mm)':<16}{'before':>10}{'after':>10}{'change':>10}   gauge heights "
-            f"{g['bottom']:.1f} / {g['mid']:.1f} / {g['top']:.1f} mm, taper top - bottom, crown mid - ends"]
+            f"{mm(g['bottom'])} / {mm(g['mid'])} / {mm(g['top'])} mm, taper top - bottom, crown mid - ends"]
     for key, label in SHAPE_ROWS:
         b, a, c = (shape[part][key] for part in ("before", "after", "change"))
         if c is not None:
-            rows.append(f"{label:<16}{b:>10.4f}{a:>10.4f}{c:>+10.4f}")
+            rows.append(f"{label:<16}{mm(b):>10}{mm(a):>10}{c:>+10.{LENGTH_DECIMALS}f}")
     return rows
