@@ -53,7 +53,7 @@ class ShippedCase:
 def _first_comment(text: str) -> str:
     """The first sentence of the file's first comment paragraph (comment lines up to an empty ``#`` line), joined
     across lines: a line of it ended mid-sentence."""
-    lines = []
+    lines: list[str] = []
     for line in text.splitlines():
         if not line.startswith("#"):
             if lines or line.strip():
