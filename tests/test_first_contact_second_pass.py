@@ -316,6 +316,8 @@ def test_material_fit_takes_a_shipped_data_file_by_name(tmp_path, monkeypatch, c
     from quenchsim.commands.material import data_file_path
 
     assert data_file_path("100Cr6_kawulok2020_kaymak2007") == ROOT / "materials" / "data" / "100Cr6_kawulok2020_kaymak2007.toml"
+    assert main(["ttt", "SUJ2", "--data", "100Cr6_kawulok2020_kaymak2007", "--png", str(tmp_path / "ttt.png")]) == 0
+    assert (tmp_path / "ttt.png").is_file()
 
 
 FENCE_BASH = "```bash\n"

@@ -20,10 +20,11 @@ def run(args: argparse.Namespace) -> int:
     from quenchsim.calibration import calibrate, load_calibration
     from quenchsim.calibration.page import posterior_rows
     from quenchsim.errors import require
+    from quenchsim.shipped import resolve_case
 
     require(args.workers >= 0, "--workers", args.workers, "must be >= 0")
     require(args.max_runs is None or args.max_runs >= 0, "--max-runs", args.max_runs, "must be >= 0")
-    spec = load_calibration(args.calibration)
+    spec = load_calibration(resolve_case(args.calibration, field="calibration"))
     out = args.out or Path("runs") / f"calibration_{spec.name}"
     logging.basicConfig(level=logging.WARNING, format="quenchsim: %(message)s")
     result = calibrate(spec, out, workers=args.workers, progress=not args.quiet, max_runs=args.max_runs)
