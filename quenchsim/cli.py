@@ -112,7 +112,12 @@ def _command(argv: list[str] | None) -> int:
             verb = importlib.import_module(args._bearing_module)
             check_ranges(args, getattr(verb, "RANGES", {}))
             result = verb.run(args)
-            print(json.dumps(result, default=float) if args.json else "\n".join(plain_lines(result)))
+            if args.json:
+                print(json.dumps(result, default=float))
+            else:
+                from quenchsim.commands.plain_text import plain_lines
+
+                print("\n".join(plain_lines(result)))
             return 0
         return int(importlib.import_module(args._module).run(args) or 0)
     except (RunInterrupted, KeyboardInterrupt) as exc:
@@ -121,35 +126,6 @@ def _command(argv: list[str] | None) -> int:
     except QuenchsimError as exc:
         print(f"quenchsim: error: {exc}", file=sys.stderr)
         return 2
-
-
-def plain_lines(value: object, indent: str = "") -> list[str]:
-    """A bearing verb's result as text, one ``key: value`` line per entry: tables nested by indent, a list of tables
-    as one ``- key value, ...`` line per item, numbers to 6 significant digits."""
-    if isinstance(value, dict):
-        lines = []
-        for key, item in value.items():
-            if isinstance(item, dict) or (isinstance(item, list) and any(isinstance(x, dict) for x in item)):
-                lines += [f"{indent}{key}:", *plain_lines(item, indent + "  ")]
-            else:
-                lines.append(f"{indent}{key}: {_plain_value(item)}")
-        return lines
-    if isinstance(value, list):
-        return [f"{indent}- " + (", ".join(f"{k} {_plain_value(v)}" for k, v in item.items()) if isinstance(item, dict)
-                                else _plain_value(item)) for item in value]
-    return [f"{indent}{_plain_value(value)}"]
-
-
-def _plain_value(value: object) -> str:
-    if isinstance(value, bool) or value is None:
-        return str(value).lower() if value is not None else "-"
-    if isinstance(value, float):
-        return format(value, ".6g")
-    if isinstance(value, (list, tuple)):
-        return ", ".join(_plain_value(v) for v in value)
-    if isinstance(value, dict):
-        return "; ".join(f"{k} {_plain_value(v)}" for k, v in value.items())
-    return str(value)
 
 
 if __name__ == "__main__":

@@ -109,10 +109,9 @@ def shipped_file(name: str, field: str = "NAME") -> Path:
             return path
     try:
         return shipped_case(name, field=field).path
-    except InputError:
+    except InputError as exc:
         examples = ", ".join(p.name for p in shipped_examples())
-        raise InputError(field, name, f"no shipped case or example file of that name (quenchsim cases lists them; "
-                                      f"examples: {examples})") from None
+        raise InputError(field, name, f"{exc.allowed}; example files: {examples}") from None
 
 
 def is_bare_name(value: str | Path) -> bool:
