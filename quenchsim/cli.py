@@ -81,6 +81,21 @@ line sets these to 1 for its own process unless the user set them; a library use
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run one command (``argv``, default the process's arguments); the exit status: 0, 1 (a study or sweep missed or
+    failed), 2 (bad input, one line on stderr), 130 (interrupted), 141 (the reader of stdout went away)."""
+    try:
+        try:
+            return _command(argv)
+        finally:
+            sys.stdout.flush()   # here, where a closed pipe can still be caught
+    except BrokenPipeError:
+        # the reader stopped reading (`quenchsim ... | head`): stop quietly, as a command killed by SIGPIPE; stdout
+        # goes to /dev/null so that the interpreter's flush at exit does not raise again
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
+
+
+def _command(argv: list[str] | None) -> int:
     for var in SINGLE_THREAD_BLAS:
         os.environ.setdefault(var, "1")
     if argv is not None:
@@ -101,8 +116,9 @@ def main(argv: list[str] | None = None) -> int:
             if args.json:
                 print(json.dumps(result, default=float))
             else:
-                for key, value in result.items():
-                    print(f"{key}: {value}")
+                from quenchsim.commands.plain_text import plain_lines
+
+                print("\n".join(plain_lines(result)))
             return 0
         return int(importlib.import_module(args._module).run(args) or 0)
     except (RunInterrupted, KeyboardInterrupt) as exc:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import difflib
 from typing import Any
 
 
@@ -33,7 +34,15 @@ def require_known_keys(table: Any, allowed: tuple[str, ...], where: str) -> None
     """Raise :class:`InputError` for the first key of ``table`` (the input's ``[where]`` table) not in ``allowed``:
     a misspelt key is an error, never ignored."""
     for key in table:
-        require(key in allowed, f"{where}.{key}", table[key], f"unknown key; [{where}] takes {', '.join(allowed)}")
+        require(key in allowed, f"{where}.{key}", table[key],
+                f"unknown key; [{where}] takes {', '.join(allowed)}{did_you_mean(key, allowed)}")
+
+
+def did_you_mean(name: str, known: Any) -> str:
+    """``"; did you mean NAME?"`` for the known name closest to a misspelt ``name`` (difflib's ratio >= 0.75), else
+    ``""``: the end of an unknown-key message."""
+    close = difflib.get_close_matches(str(name), [str(k) for k in known], n=1, cutoff=0.75)
+    return f"; did you mean {close[0]}?" if close else ""
 
 
 class RunInterrupted(QuenchsimError):

@@ -18,12 +18,26 @@ from quenchsim.errors import InputError
 PACKAGE = Path(__file__).resolve().parent
 
 
+EXAMPLES = ("docs/guide", "first_hour_*")
+"""Where the guides' example files lie in a checkout, and their pattern; a wheel carries them as
+``quenchsim/_data/examples`` (setup.py)."""
+
+
 def shipped_dir(folder: str) -> Path:
     """The shipped data folder ``folder`` ("cases" or "materials"): the checkout's, else the wheel's copy. The one
     place that says where shipped data lie (:func:`quenchsim.materials.materials_dir` is this for "materials"; the
     user's folders searched before it are :func:`quenchsim.materials.data_folders`)."""
     checkout = PACKAGE.parent / folder
     return checkout if checkout.is_dir() else PACKAGE / "_data" / folder
+
+
+def shipped_examples() -> list[Path]:
+    """The example files the guides name (``first_hour_probe_curve.csv``, ``first_hour_ttt.toml``) and the example
+    scripts among the cases (``example_sweep_script.py``): what ``quenchsim cases copy NAME`` copies besides the
+    cases, from a checkout or a wheel."""
+    checkout = PACKAGE.parent / EXAMPLES[0]
+    folder = checkout if checkout.is_dir() else PACKAGE / "_data" / "examples"
+    return sorted([*folder.glob(EXAMPLES[1]), *(p for p in shipped_dir("cases").iterdir() if p.suffix == ".py")])
 
 
 @dataclass(frozen=True)
@@ -37,10 +51,28 @@ class ShippedCase:
 
 
 def _first_comment(text: str) -> str:
+    """The first sentence of the file's first comment paragraph (comment lines up to an empty ``#`` line), joined
+    across lines: a line of it ended mid-sentence."""
+    lines: list[str] = []
     for line in text.splitlines():
-        if line.startswith("#"):
-            return line.lstrip("# ").strip()
-    return ""
+        if not line.startswith("#"):
+            if lines or line.strip():
+                break
+            continue
+        words = line.lstrip("#").strip()
+        if not words:
+            if lines:
+                break
+            continue
+        lines.append(words)
+    paragraph = " ".join(lines)
+    depth = 0
+    for i, char in enumerate(paragraph):
+        depth += {"(": 1, ")": -1}.get(char, 0)
+        if char == "." and depth == 0 and (i + 1 == len(paragraph) or (paragraph[i + 1] == " " and i + 2 < len(paragraph)
+                                                                       and paragraph[i + 2].isupper())):
+            return paragraph[:i + 1]
+    return paragraph
 
 
 def shipped_cases() -> list[ShippedCase]:
@@ -70,16 +102,36 @@ def shipped_case(name: str, field: str = "case") -> ShippedCase:
                                   f"{', '.join(c.name for c in cases) or 'none'} (quenchsim cases)")
 
 
+def shipped_file(name: str, field: str = "NAME") -> Path:
+    """A shipped case (by name) or example file (by file name or stem, :func:`shipped_examples`)."""
+    for path in shipped_examples():
+        if name in (path.name, path.stem):
+            return path
+    try:
+        return shipped_case(name, field=field).path
+    except InputError as exc:
+        examples = ", ".join(p.name for p in shipped_examples())
+        raise InputError(field, name, f"{exc.allowed}; example files: {examples}") from None
+
+
 def is_bare_name(value: str | Path) -> bool:
     """Whether ``value`` is a bare case name: no path separator, no ``.toml`` and not an existing file."""
     text = str(value)
     return "/" not in text and "\\" not in text and not text.endswith(".toml") and not Path(text).exists()
 
 
-def resolve_case(value: str | Path) -> Path:
-    """The case file of a ``quenchsim run`` argument: a bare name (:func:`is_bare_name`) is a shipped case, anything
-    else a path (checked by :func:`quenchsim.case.load_case`)."""
-    return shipped_case(str(value)).path if is_bare_name(value) else Path(value)
+def resolve_case(value: str | Path, field: str = "case") -> Path:
+    """The file of a command's case argument (``run``, ``mesh``, ``bath``, ``sweep``, ``optimise``, ``calibrate``,
+    ``bearings runout | big-end``): a bare name (:func:`is_bare_name`) is a shipped case file (``cases/NAME.toml``),
+    anything else a path (checked by the command's reader). A path that is not there but names a shipped file -- a
+    guide's ``cases/crb_outer_ring.toml`` run from a wheel or another folder -- is refused with the name to give."""
+    if is_bare_name(value):
+        return shipped_case(str(value), field=field).path
+    path = Path(value).expanduser()
+    if not path.exists() and path.suffix == ".toml" and any(c.name == path.stem for c in shipped_cases()):
+        raise InputError(field, str(value), f"no such file; quenchsim ships a file of that name: give its name, "
+                                            f"{path.stem} (or `quenchsim cases copy {path.stem}` for a copy to edit)")
+    return path
 
 
 def refuse_shipped_file(out: str | Path, field: str = "--out", hint: str = "") -> None:

@@ -1,6 +1,7 @@
 """A built wheel carries the data it needs: installed outside the checkout it finds its steels and
-quenchants (quenchsim/_data) and runs the reference case; and the README's bring-your-own-oil and -steel commands
-work with it, as written, from a project folder (the wheel is built once for both, ~60-90 s in all)."""
+quenchants (quenchsim/_data) and runs the reference case; the README's bring-your-own-oil and -steel commands and the
+guides' (first_hour.md, the data-sheet oil of bring_an_oil.md, shipped names in place of files) work with it, as
+written, from a project folder (the wheel is built once for all, ~3-4 minutes in all)."""
 
 import json
 import os
@@ -119,3 +120,31 @@ def test_readmes_bring_your_own_oil_and_steel_run_from_a_wheel_in_a_project_fold
     assert summary["status"] == "ok"
     resolved = (tmp_path / "runs" / "mine" / "case.toml").read_text()
     assert 'material = "MY_STEEL"' in resolved and 'quenchant = "my_oil"' in resolved
+
+
+def _wheel_argv(venv: Path, command: str) -> list[str]:
+    argv = shlex.split(command)
+    assert argv[0] in ("quenchsim", "python3"), command
+    return [str(venv / "bin" / ("quenchsim" if argv[0] == "quenchsim" else "python")), *argv[1:]]
+
+
+def test_the_guides_commands_run_from_a_wheel_in_a_project_folder(wheel_venv, tmp_path):
+    """From a wheel, as written (issue 47): every command of docs/guide/first_hour.md (its example files copied by
+    `quenchsim cases copy`, so they are in the wheel), the data-sheet oil of bring_an_oil.md (`--shape-from` by name),
+    and shipped names in place of a case file in mesh, bath and bearings runout."""
+    from test_first_contact_second_pass import guide_bash_commands
+    from test_first_hour import GUIDE, guide_commands
+
+    commands, _ = guide_commands(GUIDE.read_text())
+    commands += guide_bash_commands(ROOT / "docs" / "guide" / "bring_an_oil.md", "## From the data-sheet figures")
+    commands += ["quenchsim mesh crb_outer_ring --condition 1 --mesh-size 15",
+                 "quenchsim bath srb_outer_ring --condition 4",
+                 "quenchsim bearings runout runout_695_inner9 --no-plots --json"]
+    for command in commands:
+        _run(_wheel_argv(wheel_venv, command), tmp_path, 600)
+    assert json.loads((tmp_path / "runs" / "mine" / "summary.json").read_text())["status"] == "ok"
+    assert (tmp_path / "my_data" / "quenchants" / "NAME.toml").is_file()
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    missing = subprocess.run(_wheel_argv(wheel_venv, "quenchsim run cases/crb_outer_ring.toml --condition 1"),
+                             cwd=tmp_path, capture_output=True, text=True, timeout=120, env=env)
+    assert missing.returncode == 2 and "give its name, crb_outer_ring" in missing.stderr

@@ -32,8 +32,9 @@ def _one_line_error(capsys) -> str:
 
 def test_cases_lists_every_shipped_case_with_description_and_conditions(capsys):
     assert main(["cases"]) == 0
-    lines = capsys.readouterr().out.splitlines()
+    *lines, examples = capsys.readouterr().out.splitlines()
     assert [ln.split()[0] for ln in lines] == SHIPPED_CASES
+    assert examples.startswith("example files (quenchsim cases copy NAME): ") and "first_hour_ttt.toml" in examples
     ring_a = next(ln for ln in lines if ln.startswith("crb_outer_ring "))
     assert "Cylindrical-roller-bearing outer ring (case A)" in ring_a and "[conditions: 1, 2, 3]" in ring_a
 
@@ -68,7 +69,9 @@ def test_a_bare_name_is_a_shipped_case_and_a_path_stays_a_path(tmp_path, monkeyp
     case = load_case(shipped.resolve_case("crb_outer_ring"), "1")
     assert case.name == "crb_outer_ring" and case.material == "SUJ3"
     assert shipped.resolve_case("my/crb_outer_ring") == Path("my/crb_outer_ring")
-    assert shipped.resolve_case("crb_outer_ring.toml") == Path("crb_outer_ring.toml")
+    assert shipped.resolve_case("my_ring.toml") == Path("my_ring.toml")
+    with pytest.raises(InputError, match="give its name, crb_outer_ring"):   # not here, but shipped (issue 47)
+        shipped.resolve_case("crb_outer_ring.toml")
     (tmp_path / "crb_outer_ring").write_text("")   # an existing file of that name is the user's
     assert shipped.resolve_case("crb_outer_ring") == Path("crb_outer_ring")
 

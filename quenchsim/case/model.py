@@ -216,5 +216,9 @@ class Case:
         return self.with_overrides(overrides)
 
     def with_mesh_size(self, size_mm: float) -> "Case":
-        """The case with core element size ``size_mm`` and the surface size scaled in proportion."""
-        return self.refined(mesh=size_mm / self.mesh.size_mm)
+        """The case with core element size ``size_mm`` and the surface size scaled in proportion, to 12 significant
+        digits: ``--mesh-size 15`` on 5 / 1.2 mm is 3.6 mm at the surface, in the case and its case.toml, not the
+        binary product 3.5999999999999996. (:meth:`refined` keeps the exact product: gmsh meshes differ at 1e-16, and
+        the studies that refine their cases are not to move.)"""
+        surface = float(f"{self.mesh.surface_size_mm * size_mm / self.mesh.size_mm:.12g}")
+        return self.with_overrides({"mesh.size_mm": size_mm, "mesh.surface_size_mm": surface})

@@ -18,7 +18,7 @@ import numpy as np
 
 from quenchsim.case.model import (AirStage, Case, MechanicsOptions, MeshSpec, OutputSpec, Probe, ProcessSpec,
                                   QuenchStage, TemperStage, TimeControl, TransferStage)
-from quenchsim.errors import InputError, require, require_known_keys
+from quenchsim.errors import InputError, did_you_mean, require, require_known_keys
 from quenchsim.geometry.profile import MM, Profile, profile_from_case
 
 DEFAULTS: dict[str, Any] = {
@@ -160,6 +160,8 @@ def load_case(path: str | Path, condition: str | None = None,
             raw = tomllib.load(fh)
         except tomllib.TOMLDecodeError as exc:
             raise InputError("case", str(path), f"is not valid TOML ({exc})") from None
+    require(raw, "case", str(path), "the file is empty (no keys, no tables): is it the case file you meant, or was "
+                                    "it cut short?")
     return case_from_dict(raw, condition, overrides, path=path)
 
 
@@ -173,9 +175,12 @@ def case_from_dict(raw: Mapping[str, Any], condition: str | None = None,
     data = deep_merge(DEFAULTS, {k: v for k, v in raw.items() if k != "conditions"})
     if condition is not None:
         condition = str(condition)
+        if not conditions:
+            where = path.name if path is not None else "this case"
+            raise InputError("--condition", condition, f"not in this case: {where} has no [conditions.NAME] tables at all "
+                                                       "(is the file complete, not truncated?)")
         if condition not in conditions:
-            raise InputError("--condition", condition,
-                             f"not in this case; available: {', '.join(sorted(conditions)) or 'none'}")
+            raise InputError("--condition", condition, f"not in this case; available: {', '.join(sorted(conditions))}")
         data = deep_merge(data, conditions[condition])
     elif conditions:
         raise InputError("--condition", None, f"required; available: {', '.join(sorted(conditions))}")
@@ -196,7 +201,8 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
             set_dotted(data, dotted, value)
     data = deep_merge(DEFAULTS, data)   # a removed key falls back to its default
     for key in data:
-        require(key in TABLE_KEYS[""], key, data[key], f"unknown table or key; a case takes {', '.join(TABLE_KEYS[''])}")
+        require(key in TABLE_KEYS[""], key, data[key],
+                f"unknown table or key; a case takes {', '.join(TABLE_KEYS[''])}{did_you_mean(key, TABLE_KEYS[''])}")
 
     material = _material(data, path)
     data["material"] = material
@@ -214,6 +220,7 @@ def build_case(data: Mapping[str, Any], name: str, condition: str | None, path: 
         austenitising_temperature_C=_number(p, "austenitising_temperature_C", "process.austenitising_temperature_C",
                                             minimum=600.0, maximum=1200.0),
         room_temperature_C=_number(p, "room_temperature_C", "process.room_temperature_C", minimum=-50.0, maximum=100.0))
+    _austenitising_in_range(material, process.austenitising_temperature_C)
     t = _table(data, "transfer")
     transfer = TransferStage(time_s=_number(t, "time_s", "transfer.time_s", minimum=0.0),
                              temperature_C=_number(t, "temperature_C", "transfer.temperature_C", minimum=-50.0,
@@ -268,6 +275,17 @@ def _material(data: Mapping[str, Any], case_path: Path | None) -> str:
         name = str(file.resolve())
     transforms(load_material(name))
     return name
+
+
+def _austenitising_in_range(material: str, T_aust_C: float) -> None:
+    """The austenitising temperature within the steel's tabulated range (a transforming steel's dissolved carbon, Ms
+    and kinetics are known there only; outside it a run failed later, after writing its first files)."""
+    from quenchsim.materials import load_material, transforms
+    from quenchsim.metallurgy.kinetics import check_austenitising_temperature
+
+    steel = load_material(material)
+    if transforms(steel):
+        check_austenitising_temperature(steel, T_aust_C, "process.austenitising_temperature_C")
 
 
 def _htc_tables(spec: Any, field: str, segments: list[str]) -> Mapping[str, Any]:

@@ -14,7 +14,7 @@ from quenchsim.errors import InputError
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("case", type=Path, help="case file (TOML) with a [quench.bath] table")
+    parser.add_argument("case", type=Path, help="case file (TOML) with a [quench.bath] table, or the name of a shipped case")
     parser.add_argument("--condition", help="named condition of the case file")
     parser.add_argument("--png", type=Path, help="write HTC(T) per segment to this PNG (and the speeds to *_speed.png)")
     parser.add_argument("--spacing-mm", type=float, default=2.0, help="spacing of the boundary points (mm)")
@@ -24,10 +24,11 @@ def run(args: argparse.Namespace) -> int:
     from quenchsim.bath.plots import plot_htc, plot_velocity
     from quenchsim.bath.segments import TABLE_T_C, outline_htc, segment_table
     from quenchsim.case import load_case
+    from quenchsim.shipped import resolve_case
 
     if not args.spacing_mm > 0:
         raise InputError("--spacing-mm", args.spacing_mm, "must be > 0")
-    case = load_case(args.case, args.condition)
+    case = load_case(resolve_case(args.case), args.condition)
     if case.quench.bath is None:
         raise InputError("quench.htc_model", case.quench.htc_model, "must be 'bath' for `quenchsim bath`")
     points, htc = outline_htc(case.profile, case.quench.bath, args.spacing_mm * 1e-3)

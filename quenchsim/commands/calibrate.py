@@ -11,7 +11,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("calibration", type=Path, help="calibration file (TOML; see quenchsim.calibration.spec)")
     parser.add_argument("--out", type=Path, help="output directory (default runs/calibration_<name>)")
     parser.add_argument("--workers", type=int, default=2, help="Dask worker processes (0: runs in this process)")
-    parser.add_argument("--max-runs", type=int, help="stop after this many new full-chain runs (run again to go on)")
+    parser.add_argument("--max-runs", type=int, help="stop after this many new full-chain runs (run again to go on); "
+                                                     "a call that stops before the design is complete exits with 3")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
@@ -19,10 +20,11 @@ def run(args: argparse.Namespace) -> int:
     from quenchsim.calibration import calibrate, load_calibration
     from quenchsim.calibration.page import discrepancy_rows, posterior_rows
     from quenchsim.errors import require
+    from quenchsim.shipped import resolve_case
 
     require(args.workers >= 0, "--workers", args.workers, "must be >= 0")
     require(args.max_runs is None or args.max_runs >= 0, "--max-runs", args.max_runs, "must be >= 0")
-    spec = load_calibration(args.calibration)
+    spec = load_calibration(resolve_case(args.calibration, field="calibration"))
     out = args.out or Path("runs") / f"calibration_{spec.name}"
     logging.basicConfig(level=logging.WARNING, format="quenchsim: %(message)s")
     result = calibrate(spec, out, workers=args.workers, progress=not args.quiet, max_runs=args.max_runs)

@@ -25,10 +25,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from quenchsim.design.page import summary_text
     from quenchsim.design.spec import load_study
+    from quenchsim.shipped import resolve_case
     from quenchsim.design.study import run_study
 
     require(isinstance(args.workers, int) and args.workers >= 0, "--workers", args.workers, "must be an integer >= 0")
-    spec = load_study(args.study)
+    spec = load_study(resolve_case(args.study, field="study"))
     if args.trials is not None:
         require(args.trials >= spec.startup, "--trials", args.trials, f"must be >= study.startup ({spec.startup})")
         spec = dataclasses.replace(spec, trials=args.trials)

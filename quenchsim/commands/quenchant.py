@@ -45,7 +45,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     for t in (600, 400, 200):
         sheet.add_argument(f"--t{t}", type=float, help=f"time to {t} C, s (optional)")
     sheet.add_argument("--shape-from", default="astm_d6200_fast_oil",
-                       help="quenchant (or start-shape) file whose [shape] ratios the shortcut keeps")
+                       help="quenchant or start-shape (quenchants/data/, e.g. bt2013_start_shape) whose [shape] "
+                            "ratios the shortcut keeps: a name or a path")
     _common(sheet)
     show = sub.add_parser("show", help="print a still-bath curve")
     show.add_argument("name", help="a quenchant name (found as quenchsim run finds it) or a path")

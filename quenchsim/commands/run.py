@@ -9,7 +9,9 @@ import logging
 from pathlib import Path
 
 from quenchsim.case import load_case
+from quenchsim.commands.mesh_limit import MAX_TRIANGLES, refuse_large_mesh
 from quenchsim.errors import InputError
+from quenchsim.report.lengths import LENGTH_DECIMALS, mm
 from quenchsim.results import files
 from quenchsim.shipped import resolve_case
 
@@ -41,7 +43,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="continue the interrupted run of this case in --out from its checkpoint")
     parser.add_argument("--force", action="store_true",
                         help="write into --out even when it is a non-empty folder that is not a quenchsim run (a "
-                             "run folder's earlier outputs are always replaced)")
+                             "run folder's earlier outputs are always replaced), and mesh above "
+                             f"{MAX_TRIANGLES:,} estimated triangles")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     parser.add_argument("--json", action="store_true", help="print the key results as JSON instead of a table")
     parser.add_argument("--uncertainty", type=int, metavar="N",
@@ -60,6 +63,7 @@ def run(args: argparse.Namespace) -> int:
         if args.mesh_size <= 0:
             raise InputError("--mesh-size", args.mesh_size, "must be > 0 (mm)")
         case = case.with_mesh_size(args.mesh_size)
+    refuse_large_mesh(case, args.force)
     out = args.out or Path("runs") / f"{case.name}_{case.condition or 'base'}"
     if args.uncertainty is not None:   # checked before the run starts
         from quenchsim.calibration.propagate import uncertain_inputs
@@ -105,8 +109,7 @@ def summary_table(s: dict, out: Path) -> str:
                         f"the wall); core {h['core_HRC']:.1f} HRC")
         else:
             rows.append("HRC58 depth at mid-width (mm): "
-                        + ", ".join(f"{k.split('_')[1]} {'-' if v is None else f'{v:.2f}'}"
-                                    for k, v in h["depth_mm"].items())
+                        + ", ".join(f"{k.split('_')[1]} {mm(v)}" for k, v in h["depth_mm"].items())
                         + f"; core {h['core_HRC']:.1f} HRC")
     rows += [f"note: {note}" for note in s.get("notes", [])]
     if "dimensions_mm" not in s:   # never a silence that reads as "unchanged"
@@ -117,8 +120,9 @@ def summary_table(s: dict, out: Path) -> str:
         rows.append(f"{'dimension (mm)':<16}{'before':>10}{'after':>10}{'change':>10}"
                     + (f"{'measured':>10}{'sim - meas':>12}" if m else ""))
         for k in d["change"]:
-            rows.append(f"{k:<16}{d['before'][k]:>10.3f}{d['after'][k]:>10.3f}{d['change'][k]:>+10.3f}"
-                        + (f"{m[k]['measured']:>+10.3f}{m[k]['simulated_minus_measured']:>+12.3f}" if k in m else ""))
+            rows.append(f"{k:<16}{mm(d['before'][k]):>10}{mm(d['after'][k]):>10}{d['change'][k]:>+10.{LENGTH_DECIMALS}f}"
+                        + (f"{m[k]['measured']:>+10.{LENGTH_DECIMALS}f}"
+                           f"{m[k]['simulated_minus_measured']:>+12.{LENGTH_DECIMALS}f}" if k in m else ""))
         if m:
             rows.append(f"measured: {s['measured']['source']}")
     if "shape_mm" in s:
@@ -165,9 +169,9 @@ def shape_rows(shape: dict) -> list[str]:
     """The inspector's shape measures (summary.json ``shape_mm``) as table rows: before, after, change (mm)."""
     g = shape["gauge"]["heights_before_mm"]
     rows = [f"{'shape (mm)':<16}{'before':>10}{'after':>10}{'change':>10}   gauge heights "
-            f"{g['bottom']:.1f} / {g['mid']:.1f} / {g['top']:.1f} mm, taper top - bottom, crown mid - ends"]
+            f"{mm(g['bottom'])} / {mm(g['mid'])} / {mm(g['top'])} mm, taper top - bottom, crown mid - ends"]
     for key, label in SHAPE_ROWS:
         b, a, c = (shape[part][key] for part in ("before", "after", "change"))
         if c is not None:
-            rows.append(f"{label:<16}{b:>10.4f}{a:>10.4f}{c:>+10.4f}")
+            rows.append(f"{label:<16}{mm(b):>10}{mm(a):>10}{c:>+10.{LENGTH_DECIMALS}f}")
     return rows

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from quenchsim.commands.material import data_file_path
 from quenchsim.fitting.diagram_data import DiagramData, load_diagram_data
 from quenchsim.fitting.plots import plot_ttt, ttt_lines
 from quenchsim.materials import load_material, materials_dir
@@ -23,15 +24,17 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("material", help="material name (materials/NAME.toml) or path to a .toml file")
     parser.add_argument("--T-aust", dest="T_aust", type=float, default=845.0, help="austenitising temperature in C (default 845)")
     parser.add_argument("--temperatures", type=float, nargs="+", metavar="C", help="temperatures of the table (default: 250-700 C)")
-    parser.add_argument("--data", type=Path, help="data file to overlay (default: the one the material was fitted to)")
+    parser.add_argument("--data", help="data file to overlay, or its name in a data folder's data/ (default: the one the "
+                                         "material was fitted to)")
     parser.add_argument("--png", type=Path, help="write the diagram to this PNG file")
     parser.add_argument("--json", action="store_true", help="print one JSON object instead of the table")
 
 
-def fitted_data(material: dict, explicit: Path | None) -> DiagramData | None:
-    """The data file given, or the one recorded in the material's [kinetics.fit] (None if neither)."""
+def fitted_data(material: dict, explicit: str | Path | None) -> DiagramData | None:
+    """The data file given (a path or a name, :func:`quenchsim.commands.material.data_file_path`), or the one recorded
+    in the material's [kinetics.fit] (None if neither)."""
     if explicit is not None:
-        return load_diagram_data(explicit)
+        return load_diagram_data(data_file_path(str(explicit)))
     record = material.get("kinetics", {}).get("fit")
     if not record:
         return None

@@ -9,6 +9,8 @@ or an X server.
 from __future__ import annotations
 
 import argparse
+import os
+import sys
 from pathlib import Path
 
 
@@ -23,7 +25,19 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--size", type=int, nargs=2, default=[1000, 800], metavar=("W", "H"), help="image size, px")
 
 
+def prefer_egl_without_display() -> None:
+    """Without an X display, ask VTK for its EGL render window first: it tried X first, printed a 'bad X server
+    connection' warning, then rendered through EGL anyway (VTK >= 9.4 reads VTK_DEFAULT_OPENGL_WINDOW; a user's own
+    setting is kept, and nothing is set where no EGL library is found)."""
+    import ctypes.util
+
+    if (sys.platform.startswith("linux") and not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY")
+            and ctypes.util.find_library("EGL")):
+        os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+
+
 def run(args: argparse.Namespace) -> int:
+    prefer_egl_without_display()
     import numpy as np
     import pyvista
 

@@ -51,8 +51,8 @@ and the rule, before the fit starts (finish before start, a curve that does not 
 a unit slip (a time in ms or minutes, a rate in C/min, a temperature in K): T_aust_C within
 :data:`T_AUST_RANGE_C`, a CCT curve starting at or below T_aust_C, its rate / t8/5 within :data:`RATE_RANGE_C_S` /
 :data:`T85_RANGE_S`, TTT holds between :data:`T_MIN_C` and T_aust_C, start times within :data:`TIME_START_RANGE_S`,
-finish times up to :data:`TIME_FINISH_MAX_S`, and a product with a start or finish line on a curve having a
-non-zero fraction on it.
+finish times up to :data:`TIME_FINISH_MAX_S`, and a product with a start line on a curve having at least 1 % of it
+there, with a finish line more than 2 % (a finish is 99 % of the final amount: with 1 % it would lie above the start).
 """
 
 from __future__ import annotations
@@ -66,6 +66,7 @@ from typing import Any
 import numpy as np
 
 from quenchsim.errors import InputError
+from quenchsim.metallurgy.cct import FINISH_SHARE, MIN_FINISH_AMOUNT, START_FRACTION
 from quenchsim.metallurgy.hardness import hrc_to_hv
 from quenchsim.metallurgy.kinetics import C_CURVE_PARAMETERS, N_NODES, n_exponent_nodes
 
@@ -320,10 +321,18 @@ def _cct(r: _Reader, i: int, table: Any, T_aust_C: float) -> CCTPoint:
             raise r.error(f"{where}.fractions.{p}", x, "a phase fraction must lie within 0-1")
     if sum(fractions.values()) > 1.0 + 1e-6:
         raise r.error(f"{where}.fractions", fractions, "phase fractions must not add up to more than 1")
-    for p, T in {**start, **finish}.items():
-        if p in fractions and fractions[p] <= 0.0:
+    for p, T in start.items():
+        if p in fractions and fractions[p] < START_FRACTION:
             raise r.error(f"{where}.fractions.{p}", fractions[p], f"contradicts the {p} line at {T:g} C on this curve "
-                                                                  "(a start is 1 % transformed): must be > 0")
+                                                                  f"(a start is {START_FRACTION:.0%} transformed): must "
+                                                                  f"be >= {START_FRACTION:g}")
+    for p, T in finish.items():
+        if p in fractions and fractions[p] <= MIN_FINISH_AMOUNT:
+            raise r.error(f"{where}.fractions.{p}", fractions[p], f"contradicts the {p} line at {T:g} C on this curve: "
+                                                                  f"a finish line ({FINISH_SHARE:.0%} of the final "
+                                                                  f"amount) needs more than {MIN_FINISH_AMOUNT:g} of the "
+                                                                  "product (with less it would lie at or above the "
+                                                                  f"{START_FRACTION:.0%} start): drop the finish line")
     hv = r.hardness(table, where)
     if hv is not None:
         r.check_hv(hv[0], f"{where}.hardness")

@@ -49,6 +49,8 @@ CONDITION_LIMIT = 1e-6
 """Smallest singular value of the column-normalised Jacobian, relative to the largest, of an identifiable fit."""
 FIT_BEGIN = "# >>> kinetics fitted by `quenchsim material fit`: generated, re-run the fit instead of editing"
 FIT_END = "# <<< end of fitted kinetics"
+WARNING_COMMENT = "# WARNING (quenchsim material fit): "
+"""The head of each comment line a fit's warnings put at the top of the written steel (a re-fit replaces them)."""
 
 
 class FitError(QuenchsimError):
@@ -329,8 +331,9 @@ def _fmt(x: float | tuple[float, ...]) -> float | list[float]:
     return [float(f"{v:.6g}") for v in x] if isinstance(x, tuple) else float(f"{x:.6g}")
 
 
-def fitted_block(result: FitResult, data_file: str) -> str:
-    """TOML text of the fitted reactions and the fit record (data file, residual of every point, its source)."""
+def fitted_block(result: FitResult, data_file: str, quality: Mapping[str, Any] | None = None) -> str:
+    """TOML text of the fitted reactions and the fit record (data file, its ``quality`` entries --
+    :func:`quenchsim.fitting.fit_quality.fit_record` --, the residual of every point, its source)."""
     data = result.data
     lines = [FIT_BEGIN]
     for r, spec in data.fit.items():
@@ -357,7 +360,9 @@ def fitted_block(result: FitResult, data_file: str) -> str:
             lines.append(f"{p} = " + _inline({"value": _fmt(v), **entry, "source": source}))
     sources = list(dict.fromkeys(x.source for x in result.residuals))
     lines += ["", "[kinetics.fit]", "data_file = " + _value(data_file), f"T_aust_C = {_value(data.T_aust_C)}",
-              f"cost = {_value(_fmt(result.cost))}", "sources = ["]
+              f"cost = {_value(_fmt(result.cost))}"]
+    lines += [f"{k} = {_value(_fmt(v) if isinstance(v, float) else v)}" for k, v in (quality or {}).items()]
+    lines += ["sources = ["]
     lines += [f"    {_value(x)}," for x in sources] + ["]", "# source = index into sources", "residuals = ["]
     lines += [f"    {_inline(row)}," for row in (
         {"point": x.where, "quantity": x.quantity, "data": _fmt(x.data), "model": _fmt(x.model), "unit": x.unit,
@@ -405,17 +410,21 @@ def _identity(text: str, name: str, description: str) -> str:
 
 
 def write_material(result: FitResult, out: Path, data_file: str, name: str | None = None,
-                   description: str = "") -> Path:
+                   description: str = "", quality: Mapping[str, Any] | None = None) -> Path:
     """Write the base material with its fitted reactions replaced, once, and check that the file loads. With
     ``name`` the file's top-level ``name`` and ``description`` are these (a new steel is the user's, not the base
-    material it was fitted from); without, the base material's are kept (a shipped steel regenerated in place)."""
+    material it was fitted from); without, the base material's are kept (a shipped steel regenerated in place).
+    ``quality`` goes into the fit record; its ``warnings`` also head the file as comments."""
     data = result.data
     text = _strip_reactions(find_data_file(data.material, field=f"{data.path.name}: material").read_text(),
                             list(data.fit))
+    text = "".join(line for line in text.splitlines(keepends=True) if not line.startswith(WARNING_COMMENT))
     if name is not None:
         text = _identity(text, name, description)
+    warnings = (quality or {}).get("warnings", [])
+    head = "".join(f"{WARNING_COMMENT}{w}\n" for w in warnings)
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(text + "\n" + fitted_block(result, data_file))
+    out.write_text(head + text + "\n" + fitted_block(result, data_file, quality))
     load_kinetics(load_material(str(out)), data.T_aust_C)
     return out

@@ -35,6 +35,23 @@ constant); h well above 20,000 W/m2K is water or brine boiling, not oil. A fit a
 better) but warned about."""
 
 
+PROBE_START_C = 850.0
+"""The temperature the ISO 9950 / ASTM D6200 probe is quenched from, C (materials/quenchants/iso9950_probe_inconel600.toml)."""
+
+KELVIN = 273.15
+
+
+def kelvin_hint(temperature: npt.ArrayLike) -> str:
+    """``"; is it in K? ..."`` when a probe curve's highest value is the probe's 850 C start in kelvin (within 100 K
+    of 1123 K), else ``""``: the end of a message refusing the curve (in K a curve in an oil bath above 27 C never
+    reaches 300 "C")."""
+    T = np.asarray(temperature, dtype=float)
+    if abs(float(T.max()) - KELVIN - PROBE_START_C) > 100.0:
+        return ""
+    return (f"; is it in K? (its highest value {float(T.max()):g} is the probe's {PROBE_START_C:g} C start in K; "
+            "give degrees C)")
+
+
 RATE_WINDOW_S = 0.5
 """Time window, s, over which a time curve's cooling rate is taken for :data:`MAX_CENTRE_RATE_C_S` (2 K of noise
 between samples 0.01 s apart would read as 200 C/s; over 0.5 s as 4 C/s; the conduction-limit peak is ~1 s wide)."""

@@ -37,7 +37,7 @@ from scipy.optimize import least_squares
 from quenchsim.bath.quenchant import STILL_BATH_KIND
 from quenchsim.errors import InputError, require
 from quenchsim.fitting.probe import ProbeCurve, ProbeModel, step_schedule
-from quenchsim.fitting.probe_bounds import MAX_OIL_HTC_W_M2K
+from quenchsim.fitting.probe_bounds import MAX_OIL_HTC_W_M2K, kelvin_hint
 from quenchsim.materials import load_data_file
 
 TIME_TEMPERATURE = "time_temperature"
@@ -133,7 +133,7 @@ def check_probe_data(data: ProbeData, where: str = "curve") -> ProbeData:
             raise InputError(f"{where}: rate_C_s (point {i + 1}, T = {float(T[i]):g} C)", float(rate[i]),
                              "the probe heats up: a cooling rate must be >= 0")
     require(float(T.min()) <= LOWEST_REQUIRED_C, f"{where}: temperature_C (lowest)", float(T.min()),
-            f"the curve never reaches {LOWEST_REQUIRED_C:g} C: record it down to 300 C or below")
+            f"the curve never reaches {LOWEST_REQUIRED_C:g} C: record it down to 300 C or below{kelvin_hint(T)}")
     return data
 
 
@@ -472,8 +472,9 @@ shortcut keeps: the one oil fitted to all six published D6200 figures (materials
 
 
 def default_shape(name: str = SHORTCUT_SHAPE_OIL) -> CurveShape:
-    """The ``[shape]`` table of a quenchant file (a data-sheet fit) or of a start-shape file."""
-    data = load_data_file(name, "quenchants", "--shape-from")
+    """The ``[shape]`` table of a quenchant file (a data-sheet fit) or of a start-shape file (``quenchants/data/``,
+    e.g. ``bt2013_start_shape``), by name or path."""
+    data = load_data_file(name, ("quenchants", "quenchants/data"), "--shape-from")
     shape = data.get("shape")
     if not isinstance(shape, dict):
         raise InputError("--shape-from", name, "has no [shape] table (h_film_W_m2K, transition_K, h_peak_W_m2K, "

@@ -25,6 +25,48 @@ class SectionMesh:
         return int(self.mesh.t.shape[1])
 
 
+TRIANGLE_AREA_FACTOR = 3.0 ** 0.5 / 4.0
+"""Area of an equilateral triangle of edge h, in h^2: a mesh of size h(r, z) holds about the integral of
+1 / (factor h^2) over the section."""
+
+
+def estimated_triangles(profile: Profile, size_m: float, surface_size_m: float, surface_layer_m: float) -> int:
+    """About how many triangles :func:`mesh_profile` makes of ``profile``, without meshing: the integral of
+    1 / (sqrt(3)/4 h^2) over the section, h growing linearly from ``surface_size_m`` at the surface (the axis of a
+    solid part excluded, as in the mesher) to ``size_m`` at ``surface_layer_m`` deep. The section is sampled on a
+    grid for the area farther than the layer and for the layer's mean length; near the surface, where h is smallest,
+    the integral over the depth is exact. Measured against gmsh on the shipped sections at 0.2-3x their element
+    sizes: 0.92-1.02 of its count at the default sizes and finer, 0.85-0.98 at 3x coarser, 1.2 with a surface size
+    a fiftieth of the core's (gmsh grades faster)."""
+    from matplotlib.path import Path as PolygonPath
+
+    r0, r1, z0, z1 = profile.bounds()
+    n = 400
+    step = max(r1 - r0, z1 - z0) / n
+    r, z = np.meshgrid(np.arange(r0 + step / 2, r1, step), np.arange(z0 + step / 2, z1, step))
+    points = np.column_stack([r.ravel(), z.ravel()])
+    inside = PolygonPath(profile.polygon(64)).contains_points(points)
+    surfaces = [s for s in profile.segments if s.name != "axis"]
+    depth = np.min([s.distance(points[inside, 0], points[inside, 1]) for s in surfaces], axis=0)
+    cell = step * step
+    area = cell * depth.size
+    layer = min(surface_layer_m, float(depth.max()))
+    core_area = cell * np.count_nonzero(depth >= layer)
+    perimeter = sum(s.length() for s in surfaces)
+    # the layer: its length falls linearly from the perimeter so that it holds the sampled layer area
+    layer_area = area - core_area
+    shrink = max(2.0 * (perimeter * layer - layer_area) / layer**2, 0.0) if layer > 0 else 0.0
+    d = np.concatenate([[0.0], np.geomspace(min(surface_size_m, layer) * 1e-3, layer, 4000)]) if layer > 0 else np.zeros(1)
+    h = surface_size_m + (size_m - surface_size_m) * d / max(surface_layer_m, 1e-12)
+    length = np.maximum(perimeter - shrink * d, 0.0)
+    integrand = length / (TRIANGLE_AREA_FACTOR * h**2)
+    layer_count = float(np.sum(0.5 * (integrand[1:] + integrand[:-1]) * np.diff(d)))
+    core_h = surface_size_m + (size_m - surface_size_m) * min(layer / max(surface_layer_m, 1e-12), 1.0)
+    # + one triangle per surface edge: the boundary row the area integral misses (measured: coarse meshes count
+    # 0.5-0.6 of gmsh's without it, fine ones 0.93-0.96)
+    return int(round(layer_count + core_area / (TRIANGLE_AREA_FACTOR * core_h**2) + perimeter / surface_size_m))
+
+
 def mesh_profile(profile: Profile, size_m: float, surface_size_m: float, surface_layer_m: float,
                  msh_path: Path | None = None) -> SectionMesh:
     """Mesh ``profile`` with element size ``surface_size_m`` at the surface growing to ``size_m``

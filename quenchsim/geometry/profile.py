@@ -15,7 +15,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from quenchsim.errors import InputError, require
+from quenchsim.errors import InputError, require, require_known_keys
 
 MM = 1e-3
 
@@ -242,9 +242,20 @@ def general_profile(spec: dict[str, Any], field: str = "geometry") -> Profile:
     return prof
 
 
+GEOMETRY_KEYS: dict[str, tuple[str, ...]] = {
+    "rectangular": ("inner_diameter_mm", "outer_diameter_mm", "width_mm", "chamfer_mm", "edge_radius_mm"),
+    "spherical_outer": ("raceway_diameter_mm", "outer_diameter_mm", "width_mm", "chamfer_mm"),
+    "profile": ("start_mm", "segments"),
+}
+"""The keys of ``[geometry]`` by ``type`` (besides ``type`` and ``reference_state``): a misspelt key is an error,
+named before any missing one (docs/reference/case_keys.md)."""
+
+
 def profile_from_case(geometry: dict[str, Any]) -> Profile:
     """Dispatch on ``geometry.type``; dimensions in mm."""
     kind = geometry.get("type", "rectangular")
+    if kind in GEOMETRY_KEYS:
+        require_known_keys(geometry, ("type", "reference_state", *GEOMETRY_KEYS[kind]), "geometry")
     g = {k: v for k, v in geometry.items()}
 
     def mm(key: str, default: float | None = None) -> float:

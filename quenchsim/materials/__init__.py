@@ -99,28 +99,32 @@ def shipped_data_only() -> Iterator[None]:
             os.environ[SHIPPED_ONLY_ENV] = old
 
 
-def _known(subdir: str) -> list[str]:
-    return sorted({p.stem for f in data_folders() for p in (f / subdir).glob("*.toml") if ".mechanics" not in p.name})
+def _known(subdirs: tuple[str, ...]) -> list[str]:
+    return sorted({p.stem for f in data_folders() for s in subdirs for p in (f / s).glob("*.toml")
+                   if ".mechanics" not in p.name})
 
 
-def find_data_file(name: str, subdir: str = "", field: str = "material") -> Path:
-    """The file of data name ``name`` in ``subdir`` ("" for steels, "quenchants", "baths") on the search path
-    (:func:`data_folders`, first match wins), or the path ``name`` when it ends in ``.toml``. An unknown name is an
-    :class:`InputError` that lists the folders searched and the names known there."""
+def find_data_file(name: str, subdir: str | tuple[str, ...] = "", field: str = "material") -> Path:
+    """The file of data name ``name`` in ``subdir`` ("" for steels, "quenchants", "baths", "data" for CCT/TTT data
+    files; a tuple: each in turn) on the search path (:func:`data_folders`, first match wins), or the path ``name``
+    when it ends in ``.toml``. An unknown name is an :class:`InputError` that lists the folders searched and the
+    names known there."""
     if name.endswith(".toml"):
         path = Path(name).expanduser()
         if not path.is_file():
             raise InputError(field, name, "no such file")
         return path
+    subdirs = (subdir,) if isinstance(subdir, str) else subdir
     for folder in data_folders():
-        path = folder / subdir / f"{name}.toml"
-        if path.is_file():
-            return path
-    searched = ", ".join(str(f / subdir) for f in data_folders())
-    raise InputError(field, name, f"unknown; known: {', '.join(_known(subdir)) or 'none'} (searched {searched})")
+        for sub in subdirs:
+            path = folder / sub / f"{name}.toml"
+            if path.is_file():
+                return path
+    searched = ", ".join(str(f / s) for f in data_folders() for s in subdirs)
+    raise InputError(field, name, f"unknown; known: {', '.join(_known(subdirs)) or 'none'} (searched {searched})")
 
 
-def load_data_file(name: str, subdir: str = "", field: str = "material") -> dict[str, Any]:
+def load_data_file(name: str, subdir: str | tuple[str, ...] = "", field: str = "material") -> dict[str, Any]:
     """The table of data file ``name`` (:func:`find_data_file`)."""
     path = find_data_file(name, subdir, field)
     with path.open("rb") as fh:

@@ -188,7 +188,7 @@ def _composition(material: Mapping[str, Any], name: str) -> dict[str, float]:
     return out
 
 
-def _dissolved(material: Mapping[str, Any], name: str, bulk: Mapping[str, float], T_aust_C: float) -> tuple[dict[str, float], float]:
+def _austenitisation_table(material: Mapping[str, Any], name: str) -> tuple[Mapping[str, Any], np.ndarray]:
     where = f"{name}.austenitisation"
     aus = material.get("austenitisation")
     if not isinstance(aus, Mapping):
@@ -197,8 +197,27 @@ def _dissolved(material: Mapping[str, Any], name: str, bulk: Mapping[str, float]
     T = np.asarray(aus.get("T_aust_C", []), dtype=float)
     if T.ndim != 1 or T.size < 1 or np.any(np.diff(T) <= 0):
         raise InputError(f"{where}.T_aust_C", aus.get("T_aust_C"), "must be a non-empty list of strictly increasing temperatures")
+    return aus, T
+
+
+def check_austenitising_temperature(material: Mapping[str, Any], T_aust_C: float, field: str = "T_aust_C") -> None:
+    """Raise :class:`InputError` (naming ``field``) unless ``T_aust_C`` lies within the range the steel's
+    ``[austenitisation]`` table covers: its dissolved carbon, Ms and kinetics are known there only (a case checks this
+    at load, before any file is written)."""
+    name = str(material.get("name", "material"))
+    _require_tabulated(_austenitisation_table(material, name)[1], T_aust_C, name, field)
+
+
+def _require_tabulated(T: np.ndarray, T_aust_C: float, name: str, field: str) -> None:
     if not T[0] <= T_aust_C <= T[-1]:
-        raise InputError("T_aust_C", T_aust_C, f"outside the austenitising range tabulated for {name}: {T[0]:g}-{T[-1]:g} C")
+        raise InputError(field, T_aust_C, f"outside the austenitising range tabulated for {name}: {T[0]:g}-{T[-1]:g} C "
+                                          "(its [austenitisation] table)")
+
+
+def _dissolved(material: Mapping[str, Any], name: str, bulk: Mapping[str, float], T_aust_C: float) -> tuple[dict[str, float], float]:
+    where = f"{name}.austenitisation"
+    aus, T = _austenitisation_table(material, name)
+    _require_tabulated(T, T_aust_C, name, "T_aust_C")
     table = aus.get("dissolved_wt")
     if not isinstance(table, Mapping) or "C" not in table:
         raise InputError(f"{where}.dissolved_wt", table, "must be a table element -> list (at least C) along T_aust_C")

@@ -23,6 +23,7 @@ import numpy as np
 
 from quenchsim.errors import InputError
 from quenchsim.report import report_plots as plots
+from quenchsim.report.lengths import is_length, mm
 from quenchsim.report.report_data import PHASES, is_sweep_dir, measured_dimensions
 from quenchsim.results import RunResults, files, load
 
@@ -129,7 +130,7 @@ def _summary_tables(run: RunResults) -> list[Item]:
     hard = s.get("hardness", {})
     if hard:
         through = "through-hardened" if hard.get("through_hardened_mid") else None   # the depth is the wall
-        rows = [[f"depth to {fmt(hard.get('threshold_HRC', 58.0))} HRC, {k} (mm)", through or v]
+        rows = [[f"depth to {fmt(hard.get('threshold_HRC', 58.0))} HRC, {k} (mm)", through or mm(v)]
                 for k, v in hard.get("depth_mm", {}).items()]
         rows += [[f"surface HRC, {k}", v] for k, v in hard.get("surface_HRC", {}).items()]
         rows += [["core HRC", hard.get("core_HRC")]]
@@ -153,8 +154,8 @@ def _dimension_table(run: RunResults, missing: list[str]) -> list[Item]:
         sim_change = dims.get("change", {}).get(k)
         meas_change = meas["change"].get(k)
         diff = None if sim_change is None or meas_change is None else sim_change - meas_change
-        rows.append([k, dims.get("before", {}).get(k), dims.get("after", {}).get(k), sim_change,
-                     meas["before"].get(k), meas["after"].get(k), meas_change, diff])
+        rows.append([k, *map(mm, (dims.get("before", {}).get(k), dims.get("after", {}).get(k), sim_change,
+                                  meas["before"].get(k), meas["after"].get(k), meas_change, diff))])
     header = ["dimension (mm)", "before (sim)", "after (sim)", "change (sim)", "before (measured)",
               "after (measured)", "change (measured)", "change: sim - measured"]
     items = [Item("table", "Dimensions before and after the quench", header=header, rows=rows)]
@@ -176,9 +177,10 @@ def _dimension_table(run: RunResults, missing: list[str]) -> list[Item]:
         parts = list(budget.get("parts", {}))
         keys = list(budget.get("total", {}))
         items.append(Item("table", "Distortion budget (mm; area in mm2)", header=["part", *keys],
-                          rows=[[plots.BUDGET_LABELS.get(p, p), *[budget["parts"][p].get(k) for k in keys]] for p in parts]
-                          + [["total (after - before)", *[budget["total"].get(k) for k in keys]],
-                             ["sum of parts - total", *[budget.get("sum_minus_total", {}).get(k) for k in keys]]]))
+                          rows=[[label, *[_budget_cell(k, row.get(k)) for k in keys]] for label, row in (
+                              *((plots.BUDGET_LABELS.get(p, p), budget["parts"][p]) for p in parts),
+                              ("total (after - before)", budget["total"]),
+                              ("sum of parts - total", budget.get("sum_minus_total", {})))]))
         items.append(Item("text", "Budget method", text=budget.get("method", "")))
     else:
         missing.append("distortion budget: summary.json has no distortion_budget_mm (a run without mechanics, or an "
@@ -191,21 +193,26 @@ def _dimension_table(run: RunResults, missing: list[str]) -> list[Item]:
     return items
 
 
+def _budget_cell(key: str, value: Any) -> Any:
+    """A distortion-budget cell: the dimensions in mm to fixed decimals, the section area (mm2) as it is."""
+    return value if key.endswith("_mm2") else mm(value)
+
+
 def _shape_table(run: RunResults) -> list[Item]:
     """The inspector's shape measures (summary.json ``shape_mm``): before, after and change, with the gauge."""
     shape = (run.summary or {}).get("shape_mm")
     if not shape:
         return []
     g = shape["gauge"]
-    text = (f"Read on the outline as a gauge would: diameters at {fmt(g['heights_before_mm']['bottom'])} / "
-            f"{fmt(g['heights_before_mm']['mid'])} / {fmt(g['heights_before_mm']['top'])} mm above the bottom face "
-            f"({fmt(g['inset_mm'])} mm, a fraction {fmt(g['inset_fraction'])} of the width, in from each face); taper: "
+    text = (f"Read on the outline as a gauge would: diameters at {mm(g['heights_before_mm']['bottom'])} / "
+            f"{mm(g['heights_before_mm']['mid'])} / {mm(g['heights_before_mm']['top'])} mm above the bottom face "
+            f"({mm(g['inset_mm'])} mm, a fraction {fmt(g['inset_fraction'])} of the width, in from each face); taper: "
             "top minus bottom; crown: mid-width minus the mean of the ends (positive: a barrel); straightness: the "
             "largest deviation of the diameter from the line through the ends; face dish: height at the OD side "
             "minus at the bore side. The distortion x10 plot above shows the same outline.")
     return [Item("text", "Shape measures", text=text),
             Item("table", "Shape measures (mm)", header=["measure", "before", "after", "change"],
-                 rows=[[k, shape["before"][k], shape["after"][k], shape["change"][k]] for k in shape["change"]])]
+                 rows=[[k, mm(shape["before"][k]), mm(shape["after"][k]), mm(shape["change"][k])] for k in shape["change"]])]
 
 
 def _tempered_table(run: RunResults) -> list[Item]:
@@ -255,7 +262,8 @@ def _uncertainty_table(run: RunResults) -> list[Item]:
         return []
     assert run.summary is not None   # it holds the uncertainty block
     nominal = dict(flatten(run.summary))
-    rows = [[key, nominal.get(key), b["median"], b["p5"], b["p95"]] for key, b in block["quantities"].items()]
+    rows = [[key, *((mm if is_length(key) else fmt)(v) for v in (nominal.get(key), b["median"], b["p5"], b["p95"]))]
+            for key, b in block["quantities"].items()]
     text = (f"{block['runs_ok']} of {block['runs']} full-chain runs with the inputs drawn from the {block['source']}: "
             + ", ".join(f"`{p}`" for p in block["inputs"]) + "."
             + "".join(f" Failed draw {name}: {error}." for name, error in block.get("failures", {}).items()))
@@ -338,7 +346,7 @@ def sweep_section(path: Path) -> Section:
     outputs = response_columns(ok)
     header = ["case", "status", *params, *outputs]
     items.append(Item("table", "Results (key outputs; all columns in results.csv)", header=header,
-                      rows=[[r.get(c) for c in header] for r in rows]))
+                      rows=[[mm(r.get(c)) if is_length(c) else r.get(c) for c in header] for r in rows]))
     failed = [[r["case"], r.get("error")] for r in rows if r["status"] not in files.FINISHED_STATUSES]
     if failed:
         items.append(Item("table", "Failed cases", header=["case", "error"], rows=failed))
@@ -372,8 +380,8 @@ def comparison_section(runs: list[RunResults]) -> Section:
         return d
 
     items = [Item("table", "Key outputs", header=["run", *[k for k, _ in keys]],
-                  rows=[[r.title, files.run_status(r.summary), *[get(r.summary or {}, p) for _, p in keys[1:]]]
-                        for r in runs])]
+                  rows=[[r.title, files.run_status(r.summary),
+                         *[(mm if "(mm)" in k else fmt)(get(r.summary or {}, p)) for k, p in keys[1:]]] for r in runs])]
     labels = [f"{r.title} ({r.path.name})" for r in runs]
     probes = [n for n in dict.fromkeys(k for r in runs if r.probes for k in r.probes) if n != "time_s"]
     panels = {name[:-2] if name.endswith("_C") else name:

@@ -13,13 +13,14 @@ from quenchsim.bearings.big_end import load_case, plot_run, run_statistics, simu
 from quenchsim.bearings.big_end.case import MODES
 from quenchsim.bearings.big_end.simulate import DEFAULT_INTEGRATOR, INTEGRATORS
 from quenchsim.bearings.commands.ranges import Range
+from quenchsim.shipped import resolve_case
 
 RANGES = {"clearance_set": Range(1, 1000, integer=True), "revolutions": Range(0.0, 1e6, low_open=True)}
 """Physical ranges of the numeric options (checked before any work, see :mod:`quenchsim.bearings.commands.ranges`)."""
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("input", help="case file (TOML), e.g. cases/big_end_two_stroke.toml")
+    parser.add_argument("input", help="case file (TOML), or a shipped one's name, e.g. big_end_two_stroke")
     parser.add_argument("--clearance-set", type=int, default=2, help="1-based [[clearance_set]] (default 2)")
     parser.add_argument("--mode", choices=MODES, default="engine", help="engine (default), static or rig")
     parser.add_argument("--revolutions", type=float, default=None, help="override the case's revolutions")
@@ -29,7 +30,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> dict:
-    case = load_case(args.input)
+    case = load_case(resolve_case(args.input, field="input"))
     result = simulate(case, args.clearance_set, args.mode, revolutions=args.revolutions, method=args.integrator)
     stats = run_statistics(result)
     if args.out is not None:

@@ -16,7 +16,8 @@ from quenchsim.bearings.gas_journal.linear import LinearisedFilm
 from quenchsim.bearings.gas_journal.linear_stability import linear_threshold
 from quenchsim.bearings.gas_journal.orbit import OrbitProgress, mass_from_parameter, orbit
 from quenchsim.bearings.gas_journal.reynolds import METHODS
-from quenchsim.bearings.gas_journal.stability import MASS_PARAMETER_RANGE, critical_mass_parameter
+from quenchsim.bearings.gas_journal.stability import (ITERATION_BUDGET, MASS_PARAMETER_RANGE, TIME_BUDGET,
+                                                      critical_mass_parameter)
 from quenchsim.bearings.gas_journal.static import static_characteristics
 from quenchsim.bearings.commands.ranges import Range
 from quenchsim.errors import InputError, require
@@ -162,21 +163,32 @@ def _stability(args: argparse.Namespace) -> dict:
         require(args.load is None, "--load", args.load, "not with --eccentricity (the eccentricity sets the load)")
         require(0.0 < args.eccentricity < 0.9, "--eccentricity", args.eccentricity,
                 "must be in (0, 0.9) for stability (omit it for the unloaded rotor)")
+    budget_s = STABILITY_MAX_TIME_S if args.max_time_s is None else args.max_time_s
     res = critical_mass_parameter(_bearing(args), _single(args), level=args.level or 3, load=args.load or 0.0,
                                   eccentricity=args.eccentricity,
                                   start_eccentricity=args.start_eccentricity, duration=args.duration or 40.0,
                                   rel_tol=args.rel_tol, max_trials=args.max_iterations,
                                   mass_range=tuple(args.mass_range),
-                                  max_time_s=STABILITY_MAX_TIME_S if args.max_time_s is None else args.max_time_s,
-                                  progress=True)
+                                  max_time_s=budget_s, progress=True)
+    message = res.message + _more_budget(res.status, budget_s, args.max_iterations)
     if args.json:
-        print(res.message, file=sys.stderr)
-    return {"status": res.status, "message": res.message,
+        print(message, file=sys.stderr)
+    return {"status": res.status, "message": message,
             "critical_mass_parameter": _finite(res.critical_mass_parameter), "stable_below": res.stable_below,
             "unstable_above": res.unstable_above, "whirl_ratio": _finite(res.whirl_ratio),
             "mass_range": list(res.mass_range), "orbits": len(res.trials), "wall_time_s": res.wall_time_s,
             "trials": [{"mass_parameter": m, "stable": bool(s), "growth_rate": _finite(g), "whirl_ratio": _finite(w)}
                        for m, s, g, w in res.trials]}
+
+
+def _more_budget(status: str, budget_s: float, orbits: int) -> str:
+    """What to give a stability search that ran out of its budget before an answer (a loaded machine runs fewer orbits
+    in the default 110 s): the option and a value three times the budget, or twice the orbits."""
+    if status == TIME_BUDGET:
+        return f"; give it more time with --max-time-s {math.ceil(3.0 * budget_s / 10.0) * 10:g}"
+    if status == ITERATION_BUDGET:
+        return f"; allow more orbits with --max-iterations {2 * orbits}"
+    return ""
 
 
 def _linear(args: argparse.Namespace) -> dict:

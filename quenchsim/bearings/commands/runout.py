@@ -11,10 +11,11 @@ import pathlib
 
 from quenchsim.bearings.runout import load_case, run as run_case
 from quenchsim.bearings.runout.output import summary, write_spectra_csv, write_trajectory_csv
+from quenchsim.shipped import resolve_case
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("input", type=pathlib.Path, help="run-out case file (TOML), see cases/runout_*.toml")
+    parser.add_argument("input", type=pathlib.Path, help="run-out case file (TOML), or a shipped one's name (runout_695_balls, ...: quenchsim cases)")
     parser.add_argument("--out", type=pathlib.Path, default=None,
                         help="output directory (default: runs/runout_<input stem>, or runs/<input stem> when that "
                              "starts with runout, below the current directory)")
@@ -29,7 +30,7 @@ def default_out(input_path: pathlib.Path) -> pathlib.Path:
 
 
 def run(args: argparse.Namespace) -> dict:
-    case = load_case(args.input)
+    case = load_case(resolve_case(args.input, field="input"))
     out = args.out if args.out is not None else default_out(args.input)
     result = run_case(case)
     csv = write_trajectory_csv(result, out / "trajectory.csv")

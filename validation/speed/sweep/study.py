@@ -126,7 +126,7 @@ def _write(reports_dir: pathlib.Path) -> list[pathlib.Path]:
         "# Parameter sweeps on Dask: the ring-A nozzle sweep", "",
         f"Sweep file: "
         f"`cases/sweep_nozzles.toml` -- {n} cases, ID jet speeds x OD jet speeds of ring A (condition 1 as the base, "
-        "bath model, coarse mesh and shortened oil/air stages; see the file's header).", "",
+        "bath model, coarse mesh, the case file's oil and air stages; see the file's header).", "",
         "## Serial against Dask with 2 workers", "",
         "Each run is a `quenchsim sweep` command started in a new session from an empty output directory; the wall "
         "time includes starting Python, the cluster, and stopping it.", "",
