@@ -183,12 +183,16 @@ def test_doj_cli_json_and_files(capsys, tmp_path):
     assert data["unloaded_ball_phase_fraction"] == 0.0 and data["geometry"]["assumed"] is True
     assert data["torque_ratio_error"] < 1e-4
     assert data["axial_force"]["frictionless_max_over_p_n"] < 1e-12 and data["axial_force"]["friction"] == 0.0
+    code, out = _cli(capsys, "--case", "3", "--angle-deg", "10", "--phase-step-deg", "5", "--friction", "0.1")
+    axial = json.loads(out.out)["axial_force"]
+    assert code == 0 and axial["friction"] == 0.1 and axial["dominant_order"] % 6 == 0
+    assert axial["peak_to_peak_N"] == pytest.approx(axial["peak_to_peak_over_mu_p_n"] * 0.1 * data["p_n_N"])
     assert (tmp_path / "doj.csv").read_text().count("\n") == 14  # header + 13 phases
     assert (tmp_path / "doj.png").stat().st_size > 0
 
 
 @pytest.mark.parametrize("argv", [["--angle-deg", "30"], ["--torque-Nm", "0"], ["--window-clearance-mm", "-0.5"],
-                                  ["--ball-diameter-mm", "60"], ["--phase-step-deg", "0"]])
+                                  ["--ball-diameter-mm", "60"], ["--phase-step-deg", "0"], ["--friction", "-0.1"]])
 def test_doj_cli_bad_input_exit_2(capsys, argv):
     code, out = _cli(capsys, *argv)
     assert code == 2

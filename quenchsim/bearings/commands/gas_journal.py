@@ -10,6 +10,7 @@ import math
 import pathlib
 import sys
 import time
+from typing import Any
 
 from quenchsim.bearings.gas_journal.benchmark import run_benchmark, sor_factor, warm_up
 from quenchsim.bearings.gas_journal.converged_threshold import (ConvergedThreshold, LevelThreshold,
@@ -223,10 +224,10 @@ def _stability(args: argparse.Namespace) -> dict:
     if args.level is not None and method == "linear":
         require(args.level >= 2, "--level", args.level, "must be >= 2 for --by linear")
     if method == "linear":
-        res = _ladder(args, lam, STABILITY_MAX_TIME_S if args.max_time_s is None else args.max_time_s, args.json)
+        ladder = _ladder(args, lam, STABILITY_MAX_TIME_S if args.max_time_s is None else args.max_time_s, args.json)
         if args.json:
-            print(res.message, file=sys.stderr)
-        return _linear_answer(res)
+            print(ladder.message, file=sys.stderr)
+        return _linear_answer(ladder)
     started = time.perf_counter()
     res = critical_mass_parameter(_bearing(args), lam, level=args.level or 3, load=args.load or 0.0,
                                   eccentricity=args.eccentricity,
@@ -235,7 +236,8 @@ def _stability(args: argparse.Namespace) -> dict:
                                   mass_range=tuple(args.mass_range),
                                   max_time_s=math.inf if args.max_time_s is None else args.max_time_s,
                                   progress=True)
-    out = {"method": "orbit", "status": res.status, "message": res.message,
+    message = res.message
+    out: dict[str, Any] = {"method": "orbit", "status": res.status,
            "critical_mass_parameter": _finite(res.critical_mass_parameter), "stable_below": res.stable_below,
            "unstable_above": res.unstable_above, "whirl_ratio": _finite(res.whirl_ratio),
            "mass_range": list(res.mass_range), "orbits": len(res.trials), "wall_time_s": res.wall_time_s,
@@ -243,11 +245,12 @@ def _stability(args: argparse.Namespace) -> dict:
            "trials": [{"mass_parameter": m, "stable": bool(s), "growth_rate": _finite(g), "whirl_ratio": _finite(w)}
                       for m, s, g, w in res.trials]}
     if linear_ok and math.isfinite(res.critical_mass_parameter):
-        out["grid_error"] = _orbit_grid_error(args, lam, res.critical_mass_parameter, args.level or 3,
-                                              time.perf_counter() - started)
-        out["message"] += "; " + out["grid_error"]["message"]
+        grid = _orbit_grid_error(args, lam, res.critical_mass_parameter, args.level or 3, time.perf_counter() - started)
+        out["grid_error"] = grid
+        message += "; " + grid["message"]
+    out["message"] = message
     if args.json:
-        print(out["message"], file=sys.stderr)
+        print(message, file=sys.stderr)
     return out
 
 
