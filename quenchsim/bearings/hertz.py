@@ -24,6 +24,13 @@ Line contact (two parallel cylinders, length L, load w = Q/L per unit length), J
 
 and, on the symmetry axis, the principal shear stress tau_1 = (p_max/b)(z - z^2/sqrt(b^2 + z^2))
 peaks where (z/b)^2 = (sqrt(5) - 1)/2, i.e. z = 0.7862 b, tau_1 = 0.3003 p_max.
+
+Static capacity (ISO 76:2006, data/iso76_static_limits.toml): a contact is at its static load rating when its
+peak pressure reaches 4000 MPa (roller bearings), 4200 MPa (ball bearings) or 4600 MPa (self-aligning ball
+bearings), where the permanent (brinell) deformation is about 1e-4 of the rolling element's diameter. Since
+Q ~ p_max^2 for a line contact and Q ~ p_max^3 for a point contact of fixed geometry, the static safety factor
+s0 = C0 / P0 of a contact at p_max is (p_limit / p_max)^2 or ^3 (:func:`static_safety_factor`); s0 < 1 means
+a brinell dent deeper than the standard accepts.
 """
 
 from __future__ import annotations
@@ -105,6 +112,29 @@ def reference_data() -> dict[str, Any]:
     ellipse coefficients m, n and the roller-clutch line contacts of reference sec. 7."""
     text = resources.files("quenchsim.bearings").joinpath("data/hertz_reference.toml").read_text("utf-8")
     return tomllib.loads(text)
+
+
+@functools.lru_cache(maxsize=1)
+def iso76_limits() -> dict[str, Any]:
+    """The ISO 76 contact-stress limits (data/iso76_static_limits.toml, with its ``source``)."""
+    return tomllib.loads(resources.files("quenchsim.bearings").joinpath("data/iso76_static_limits.toml")
+                         .read_text("utf-8"))
+
+
+ISO76_KINDS = ("roller", "ball", "self_aligning_ball")
+
+
+def static_safety_factor(p_max_Pa: float, kind: str = "roller") -> float:
+    """ISO 76's s0 = C0 / P0 of one contact at the peak pressure ``p_max_Pa``: (p_limit / p_max)^2 for a
+    roller (line contact), (p_limit / p_max)^3 for a ball (point contact); ``kind`` one of ISO76_KINDS.
+
+    >>> round(static_safety_factor(4000e6, "roller"), 12), round(static_safety_factor(2100e6, "ball"), 12)
+    (1.0, 8.0)
+    """
+    require(kind in ISO76_KINDS, "kind", kind, f"one of {', '.join(ISO76_KINDS)}")
+    require(math.isfinite(p_max_Pa) and p_max_Pa > 0.0, "p_max_Pa", p_max_Pa, "must be a positive pressure")
+    limit = iso76_limits()[f"{kind}_MPa"] * 1e6
+    return (limit / p_max_Pa) ** (2 if kind == "roller" else 3)
 
 
 def effective_modulus_Pa(E1_Pa: float, nu1: float, E2_Pa: float, nu2: float) -> float:

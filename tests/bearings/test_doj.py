@@ -13,6 +13,8 @@ import pytest
 from quenchsim.bearings import hertz
 from quenchsim.bearings.doj import (Clearances, DOJModel, contact_stiffness, hayama_fit_stiffness, reference_case,
                                     reference_data, reference_geometry)
+from quenchsim.bearings.doj.axial import axial_force_summary, friction_axial_force_N
+from quenchsim.bearings.doj.geometry import scaled_reference_geometry
 from quenchsim.bearings.doj.output import Revolution, harmonic_amplitude
 from quenchsim.cli import main
 from quenchsim.errors import InputError
@@ -136,6 +138,43 @@ def _cli(capsys, *argv):
     return code, capsys.readouterr()
 
 
+def test_axial_force_is_zero_without_friction_and_of_order_6n_with_it():
+    rev = _revolution("3", 5.0, 5.0, end=360.0)
+    # straight tracks and a cylindrical bore parallel to the outer race's axis: no axial component
+    assert np.abs(rev.outer_race_axial_N).max() <= 1e-12 * rev.p_n_N
+    force = friction_axial_force_N(rev, 0.1)
+    # first order in friction: linear in mu; the ball at psi_i drags the race the way it moves, sign(cos psi_i)
+    np.testing.assert_allclose(friction_axial_force_N(rev, 0.05), 0.5 * force)
+    psi = np.radians(rev.phase_deg[3] + 60.0 * np.arange(6))
+    assert force[3] == pytest.approx(0.1 * np.sum(rev.p_outer_N[3] * np.sign(np.cos(psi))))
+    s = axial_force_summary(rev, 0.1)
+    h = s["harmonics_over_mu_p_n"]
+    assert max(h[k] for k in h if int(k) % 6) < 1e-9 * max(h["6"], h["12"])   # six-fold symmetry: orders 6n only
+    assert s["dominant_order"] in (6, 12) and s["frictionless_max_over_p_n"] < 1e-12
+    with pytest.raises(InputError, match="friction"):
+        friction_axial_force_N(rev, -0.1)
+
+
+@pytest.mark.parametrize(("alpha", "pcr"), [(35.0, 27.0), (40.0, 35.0)])
+def test_revolution_converges_where_the_direct_start_stalls(alpha, pcr):
+    # issue 49: case 3 at 10 deg did not converge at contact angles 35 / 45 deg or a 27 mm pitch radius
+    geo = dataclasses.replace(scaled_reference_geometry(pcr), track_contact_angle_deg=alpha)
+    model = DOJModel(geo, reference_case("3"), 10.0, TORQUE)
+    phases = model.revolution(np.arange(0.0, 60.0 + 1e-9, 4.0))
+    assert max(r.residual for r in phases) < 1e-9
+    assert all(abs(r.outer_race_torque_Nm / TORQUE - 1.0) < 0.05 for r in phases)
+
+
+def test_scaled_geometry_keeps_the_spheres_around_the_pitch_circle():
+    geo = scaled_reference_geometry(35.0)
+    base = reference_geometry()
+    assert geo.pitch_circle_radius_mm == 35.0
+    assert geo.cage_outer_sphere_radius_mm - geo.pitch_circle_radius_mm == pytest.approx(
+        base.cage_outer_sphere_radius_mm - base.pitch_circle_radius_mm)
+    assert geo.pitch_circle_radius_mm - geo.inner_race_sphere_radius_mm == pytest.approx(
+        base.pitch_circle_radius_mm - base.inner_race_sphere_radius_mm)
+
+
 def test_doj_cli_json_and_files(capsys, tmp_path):
     code, out = _cli(capsys, "--case", "1", "--angle-deg", "10", "--phase-step-deg", "30", "--out", str(tmp_path))
     assert code == 0
@@ -143,12 +182,17 @@ def test_doj_cli_json_and_files(capsys, tmp_path):
     assert data["p_n_N"] == pytest.approx(TORQUE / (6 * 0.025 * math.sin(math.radians(40.0))))
     assert data["unloaded_ball_phase_fraction"] == 0.0 and data["geometry"]["assumed"] is True
     assert data["torque_ratio_error"] < 1e-4
+    assert data["axial_force"]["frictionless_max_over_p_n"] < 1e-12 and data["axial_force"]["friction"] == 0.0
+    code, out = _cli(capsys, "--case", "3", "--angle-deg", "10", "--phase-step-deg", "5", "--friction", "0.1")
+    axial = json.loads(out.out)["axial_force"]
+    assert code == 0 and axial["friction"] == 0.1 and axial["dominant_order"] % 6 == 0
+    assert axial["peak_to_peak_N"] == pytest.approx(axial["peak_to_peak_over_mu_p_n"] * 0.1 * data["p_n_N"])
     assert (tmp_path / "doj.csv").read_text().count("\n") == 14  # header + 13 phases
     assert (tmp_path / "doj.png").stat().st_size > 0
 
 
 @pytest.mark.parametrize("argv", [["--angle-deg", "30"], ["--torque-Nm", "0"], ["--window-clearance-mm", "-0.5"],
-                                  ["--ball-diameter-mm", "60"], ["--phase-step-deg", "0"]])
+                                  ["--ball-diameter-mm", "60"], ["--phase-step-deg", "0"], ["--friction", "-0.1"]])
 def test_doj_cli_bad_input_exit_2(capsys, argv):
     code, out = _cli(capsys, *argv)
     assert code == 2

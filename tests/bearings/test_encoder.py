@@ -109,3 +109,29 @@ def test_cli_bad_input_is_one_line(argv, option, allowed, capsys):
     assert main(["bearings", "encoder", *argv, "--json"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(f"quenchsim: error: {option} = ") and allowed in err[0], err
+
+
+def test_remanence_temperature_law_of_bonded_ferrite():
+    # Modelica's PlasticHardFerrite: alpha_Br = -0.002 1/K about 20 C; the field is linear in B_r
+    data = enc.magnet_data()
+    assert data["remanence_temperature_coefficient_per_K"] == -0.002 and data["reference_temperature_C"] == 20.0
+    assert enc.remanence_at_temperature_T(0.21, 20.0) == 0.21
+    assert enc.remanence_at_temperature_T(0.21, 120.0) == pytest.approx(0.21 * 0.8)
+    assert enc.remanence_at_temperature_T(0.21, -40.0) == pytest.approx(0.21 * 1.12)
+    hot = enc.Encoder(1.5e-3, 1e-3, enc.remanence_at_temperature_T(0.21, 120.0))
+    assert enc.pole_centre_field_T(hot, 1e-3) == pytest.approx(0.8 * enc.pole_centre_field_T(enc.Encoder(1.5e-3, 1e-3, 0.21), 1e-3))
+    with pytest.raises(InputError, match="temperature_C"):
+        enc.remanence_at_temperature_T(0.21, 600.0)
+
+
+def test_stray_field_margin_is_the_field_beyond_the_hall_points():
+    e = enc.Encoder(1.5e-3, 1e-3, 0.2)
+    b = enc.pole_centre_field_T(e, 1e-3)
+    # symmetric latch: the stray bias may reach B_enc - B_op of either sign; an asymmetric one is set by the nearer point
+    assert enc.stray_field_margin_T(e, 1e-3, 3e-3, -3e-3) == pytest.approx(b - 3e-3)
+    assert enc.stray_field_margin_T(e, 1e-3, 5e-3, -1e-3) == pytest.approx(b - 5e-3)
+    # with that bias the biased field still reaches the operate point and, at the other pole, the release point
+    bias = enc.stray_field_margin_T(e, 1e-3, 5e-3, -1e-3)
+    assert b + bias >= 5e-3 - 1e-15 and -b + bias <= -1e-3 + 1e-15
+    with pytest.raises(InputError, match="release_T"):
+        enc.stray_field_margin_T(e, 1e-3, 1e-3, 2e-3)

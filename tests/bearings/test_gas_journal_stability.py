@@ -8,7 +8,7 @@ import pytest
 from quenchsim.bearings.gas_journal import Bearing
 from quenchsim.bearings.gas_journal.orbit import WallTimeExceeded, mass_from_parameter, orbit
 from quenchsim.bearings.gas_journal.stability import (BRACKETED, ITERATION_BUDGET, TIME_BUDGET, UNSTABLE_IN_RANGE,
-                                                      critical_mass_parameter)
+                                                      critical_mass_parameter, orbits_to_converge)
 from quenchsim.errors import InputError
 
 # level 2 (21 x 5 nodes), T = 20 (just over the 3 whirl periods an orbit needs to be classified)
@@ -52,6 +52,17 @@ def test_orbit_budget_stops_with_the_bracket_so_far():
     assert res.unstable_above == min(m for m, s, _, _ in res.trials if not s and m > res.stable_below)
     assert math.isnan(res.critical_mass_parameter)
     assert res.message.startswith("stopped: orbit budget of 3 orbits reached; bracket so far: stable at ")
+    # what it still needs: bisections of the bracket so far to 5 %, at the measured time per orbit
+    more = orbits_to_converge(res.stable_below, res.unstable_above, 0.05)
+    assert f"~{more} more orbits to a bracket within 5 %" in res.message
+    assert res.seconds_needed == pytest.approx(more * res.wall_time_s / 3, rel=0.05)
+
+
+@pytest.mark.parametrize(("lo", "hi", "orbits"), [(1.0, 1.04, 0), (1.0, 1.1, 1), (1.0, 4.0, 5), (0.1, 100.0, 8)])
+def test_orbits_to_converge_counts_bisections_in_log_mass(lo, hi, orbits):
+    # each bisection halves ln(hi / lo); stop at hi / lo <= 1.05
+    assert orbits_to_converge(lo, hi, 0.05) == orbits
+    assert (hi / lo) ** (0.5 ** orbits) <= 1.05 < (hi / lo) ** (0.5 ** max(orbits - 1, 0)) or orbits == 0
 
 
 def test_time_budget_abandons_the_running_orbit():

@@ -138,3 +138,21 @@ def test_iso76_contact_stress_at_static_rating(name):
     outer = hertz.point_contact(Q, D / 2, D / 2, rxo, ryo, E, nu, E, nu)
     assert inner.p_max_Pa / 1e6 == pytest.approx(iso["contact_stress_MPa"], rel=0.01)
     assert outer.p_max_Pa < inner.p_max_Pa  # the inner contact is the most heavily stressed
+
+
+def test_static_safety_factor_follows_the_load_exponent_of_the_contact():
+    # ISO 76: roller bearings 4000 MPa, ball bearings 4200 MPa at C0; a line contact's load grows as p^2, a point
+    # contact's as p^3 (fixed geometry), so doubling the load of a line contact at the limit gives s0 = 1/2
+    limits = hertz.iso76_limits()
+    assert (limits["roller_MPa"], limits["ball_MPa"], limits["self_aligning_ball_MPa"]) == (4000.0, 4200.0, 4600.0)
+    line = hertz.line_contact(1.0e4, 0.02, 0.005, 1e12, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    doubled = hertz.line_contact(2.0e4, 0.02, 0.005, 1e12, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    ratio = hertz.static_safety_factor(line.p_max_Pa) / hertz.static_safety_factor(doubled.p_max_Pa)
+    assert ratio == pytest.approx(2.0, rel=1e-12)
+    ball = hertz.point_contact(1.0e3, 0.005, 0.005, 1e12, 1e12, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    ball8 = hertz.point_contact(8.0e3, 0.005, 0.005, 1e12, 1e12, STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
+    assert hertz.static_safety_factor(ball.p_max_Pa, "ball") / hertz.static_safety_factor(ball8.p_max_Pa, "ball") == \
+        pytest.approx(8.0, rel=1e-9)
+    assert hertz.static_safety_factor(4000e6) == pytest.approx(1.0)
+    with pytest.raises(InputError, match="kind"):
+        hertz.static_safety_factor(4000e6, "needle")

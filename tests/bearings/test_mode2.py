@@ -71,6 +71,24 @@ def test_critical_crack_scales_as_p_to_minus_two_and_is_bounded_by_the_contact_s
         mode2.critical_crack(2.5e9, "ellipse", 0.5)
 
 
+def test_inclusion_over_critical_is_the_area_equivalent_crack():
+    # a penny crack of diameter 2a has area pi a^2 (Murakami's sqrt(area) = sqrt(pi) a): an inclusion of that
+    # area is exactly critical; the ratio is linear in the inclusion size and inverse in the critical diameter
+    assert mode2.inclusion_over_critical(math.sqrt(math.pi) * 4e-6, 8e-6) == pytest.approx(1.0, rel=1e-14)
+    assert mode2.inclusion_over_critical(16e-6, 8e-6) == pytest.approx(2.0 / (math.sqrt(math.pi) / 2.0), rel=1e-14)
+    with pytest.raises(InputError, match="sqrt_area_m"):
+        mode2.inclusion_over_critical(0.0, 8e-6)
+
+
+def test_cli_inclusions_against_the_critical_crack(capsys):
+    assert main(["bearings", "mode2", "rcf", "--p-max-GPa", "6", "--shape", "circle", "--inclusion-sqrt-area-um",
+                 "16", "24", "--json"]) == 0
+    crack = json.loads(capsys.readouterr().out)["cracks"][0]
+    expected = [s / (math.sqrt(math.pi) / 2.0 * crack["critical_diameter_um"]) for s in (16.0, 24.0)]
+    assert crack["inclusion_over_critical"] == pytest.approx(expected, rel=1e-12)
+    assert min(crack["inclusion_over_critical"]) > 1.0   # the paper's measured inclusions exceed the critical size
+
+
 def test_cli(capsys):
     assert main(["bearings", "mode2", "rcf", "--p-max-GPa", "2.5", "6", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -85,6 +103,7 @@ def test_cli(capsys):
     (["rcf", "--p-max-GPa", "-1"], "--p-max-GPa", "in (0, 20] GPa"),
     (["rcf", "--p-max-GPa", "2", "--shape", "ellipse", "--ellipticity", "0.5"], "--ellipticity", "in [1, 20]"),
     (["rcf", "--p-max-GPa", "2", "--shape", "ellipse"], "--ellipticity", "required with --shape ellipse"),
+    (["rcf", "--p-max-GPa", "2", "--inclusion-sqrt-area-um", "0"], "--inclusion-sqrt-area-um", "in (0, 10000] um"),
     (["specimen", "--crack-mm", "30", "--width-mm", "20", "--thickness-mm", "5", "--shear-load-range-kN", "1"],
      "--crack-mm", "must be below --width-mm"),
     (["specimen", "--width-mm", "20", "--thickness-mm", "5", "--shear-load-range-kN", "1"], "--crack-mm", "required"),

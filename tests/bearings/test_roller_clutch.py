@@ -104,6 +104,25 @@ def test_bad_geometry_is_one_input_error():
         rc.engage(GEOMETRY, -5.0)
 
 
+def test_wedge_hold_needs_tan_half_wedge_and_slips_where_the_wedge_opens_to_mu():
+    hold = rc.wedge_hold(GEOMETRY, 2646.0, 0.1)
+    e = rc.engage(GEOMETRY, 2646.0)
+    assert hold.required_friction == pytest.approx(math.tan(e.wedge_angle_rad / 2.0), rel=1e-12)
+    assert hold.margin == pytest.approx(0.1 / hold.required_friction) and hold.holds
+    # at the slip load the compliant wedge angle has opened to tan(eps/2) = mu, and T = n N mu R there
+    eps = rc.wedge_angle_rad(GEOMETRY, hold.slip_roller_load_N)
+    assert math.tan(eps / 2.0) == pytest.approx(0.1, rel=1e-9)
+    assert hold.slip_torque_Nm == pytest.approx(GEOMETRY.rollers * hold.slip_roller_load_N * 0.1
+                                                * GEOMETRY.bore_radius_m, rel=1e-9)
+    assert hold.slip_torque_Nm > 2646.0
+    # a friction below the free wedge's tan(eps0/2) cannot hold any torque; a rigid wedge never opens
+    low = rc.wedge_hold(GEOMETRY, 1152.0, 0.5 * math.tan(GEOMETRY.free_wedge_angle_rad / 2.0))
+    assert not low.holds and low.slip_torque_Nm == 0.0
+    assert rc.wedge_hold(GEOMETRY, 1152.0, 0.1, compliant=False).slip_torque_Nm == math.inf
+    with pytest.raises(InputError, match="friction"):
+        rc.wedge_hold(GEOMETRY, 1152.0, 0.0)
+
+
 ARGS = ["roller-clutch", "--torque", "1152", "2646", "--rollers", "10", "--roller-diameter-mm", "10.5",
         "--roller-length-mm", "20.9", "--bore-diameter-mm", "95", "--outer-diameter-mm", "128", "--ring-width-mm",
         "27.2", "--free-wedge-angle-deg", "8.4", "--friction", "0.1"]
@@ -116,6 +135,14 @@ def test_cli_json(capsys):
     assert top["load_per_torque_N_per_Nm"] < rated["load_per_torque_N_per_Nm"]
     assert rated["wedged"] is True and rated["outer_bore"]["p_max_MPa"] < rated["inner_flat"]["p_max_MPa"]
     assert rated["ring_discrete"]["max_hoop_MPa"] > rated["ring_lame"]["bore_hoop_MPa"]
+    # ISO 76 brinelling check: s0 = (4000 MPa / p_max)^2 per contact, below 1 at the paper's maximum torque
+    for state in (rated, top):
+        s0 = state["static_capacity"]["safety_factor"]
+        assert s0["inner_flat"] == pytest.approx((4000.0 / state["inner_flat"]["p_max_MPa"]) ** 2)
+        assert s0["outer_bore"] == pytest.approx((4000.0 / state["outer_bore"]["p_max_MPa"]) ** 2)
+    assert rated["static_capacity"]["brinelling"] is False and top["static_capacity"]["brinelling"] is True
+    assert top["wedge_hold"]["required_friction"] > rated["wedge_hold"]["required_friction"]
+    assert rated["wedge_hold"]["slip_torque_Nm"] == pytest.approx(top["wedge_hold"]["slip_torque_Nm"], rel=1e-9)
 
 
 @pytest.mark.parametrize("option, value, allowed", [

@@ -9,24 +9,32 @@ import argparse
 import math
 import pathlib
 import sys
+import time
+from typing import Any
 
 from quenchsim.bearings.gas_journal.benchmark import run_benchmark, sor_factor, warm_up
+from quenchsim.bearings.gas_journal.converged_threshold import (ConvergedThreshold, LevelThreshold,
+                                                                converged_linear_threshold)
 from quenchsim.bearings.gas_journal.geometry import Bearing, Grooves, effective_ratios
 from quenchsim.bearings.gas_journal.linear import LinearisedFilm
 from quenchsim.bearings.gas_journal.linear_stability import linear_threshold
 from quenchsim.bearings.gas_journal.orbit import OrbitProgress, mass_from_parameter, orbit
 from quenchsim.bearings.gas_journal.reynolds import METHODS
-from quenchsim.bearings.gas_journal.stability import (ITERATION_BUDGET, MASS_PARAMETER_RANGE, TIME_BUDGET,
-                                                      critical_mass_parameter)
+from quenchsim.bearings.gas_journal.stability import MASS_PARAMETER_RANGE, critical_mass_parameter
 from quenchsim.bearings.gas_journal.static import static_characteristics
 from quenchsim.bearings.commands.ranges import Range
 from quenchsim.errors import InputError, require
 
 ACTIONS = ("static", "orbit", "stability", "linear", "bench")
-# stability: default budgets, so the search answers within 2 minutes on a 2-core machine (an orbit of
-# the grooved rotor A-1 at level 3 takes ~9 s, its search 9-10 orbits)
-STABILITY_MAX_TIME_S = 110.0
+STABILITY_METHODS = ("auto", "linear", "orbit")
+# stability: default budgets. The linear ladder stops at level 7 or when the next level would not fit in the
+# time budget, and then says how much more time it needs (rotor A-1 at Lambda 1 converges to 2 % on level 6 in
+# ~7 s on an idle 2-core machine, Lambda 10 on level 7 in ~60 s); the orbit search is bounded by its number of
+# orbits (an orbit of A-1 at level 3 takes ~9 s, a search 9-10 orbits), not by the clock, unless given one.
+STABILITY_MAX_TIME_S = 300.0
 STABILITY_MAX_ORBITS = 24
+STABILITY_GRID_TOL = 0.02
+STABILITY_MAX_LEVEL = 7
 POSITIVE = Range(0.0, low_open=True)
 LEVEL = Range(1, 10, integer=True)
 """Grid levels: level 10 is 5121 x 1025 nodes, beyond it a solve outgrows the memory of a workstation."""
@@ -42,7 +50,8 @@ RANGES = {"bearing_number": Range(0.0, 1e6), "eccentricity": Range(0.0, 1.0, hig
           "start_eccentricity": Range(0.0, 1.0, low_open=True, high_open=True), "mass_range": POSITIVE,
           "rel_tol": Range(0.0, 10.0, low_open=True), "max_time_s": POSITIVE,
           "max_iterations": Range(1, 10000, integer=True), "budget": POSITIVE,
-          "whirl_ratio": Range(0.0, 10.0, low_open=True)}
+          "whirl_ratio": Range(0.0, 10.0, low_open=True), "grid_tol": Range(0.0, 1.0, low_open=True, high_open=True),
+          "max_level": Range(3, 10, integer=True)}
 """Physical ranges of the numeric options (checked before any work, see :mod:`quenchsim.bearings.commands.ranges`):
 an eccentricity ratio below 1 (the journal inside its clearance), groove ratios within the land, SOR's
 over-relaxation in (0, 2)."""
@@ -65,7 +74,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--groove-length-ratio", type=float, default=0.5, help="grooved / bearing length")
     parser.add_argument("--grooved", choices=("sleeve", "rotor"), default="sleeve", help="grooved member")
     parser.add_argument("--level", type=int, default=None,
-                        help="grid level m: (10 2^(m-1)+1) x (2 2^(m-1)+1) nodes (default: static 5, orbit 3)")
+                        help="grid level m: (10 2^(m-1)+1) x (2 2^(m-1)+1) nodes (default: static 5, orbit 3; "
+                        "stability: the orbit grid, or with --by linear one level instead of the convergence ladder)")
     parser.add_argument("--method", choices=METHODS, default="multigrid", help="static: solver")
     parser.add_argument("--sor-omega", type=float, help="static --method sor: over-relaxation factor")
     parser.add_argument("--load", type=float, help="orbit: load W / (pa L D) (downward); stability: "
@@ -79,11 +89,19 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         metavar=("LO", "HI"), help="stability: Mbar range searched, its ends are run first "
                         f"(default {MASS_PARAMETER_RANGE[0]:g} {MASS_PARAMETER_RANGE[1]:g})")
     parser.add_argument("--rel-tol", type=float, default=0.05, help="stability: bracket width hi/lo - 1 (default 0.05)")
+    parser.add_argument("--by", choices=STABILITY_METHODS, default="auto",
+                        help="stability: linear = the linearised film's threshold on successively finer grids until "
+                        "Richardson's grid error is within --grid-tol; orbit = bisection on nonlinear orbits at "
+                        "--level; auto (default) = linear wherever the film can be linearised (no --load), else orbit")
+    parser.add_argument("--grid-tol", type=float, default=STABILITY_GRID_TOL,
+                        help=f"stability (linear): relative grid error to stop at (default {STABILITY_GRID_TOL:g})")
+    parser.add_argument("--max-level", type=int, default=STABILITY_MAX_LEVEL,
+                        help=f"stability (linear): finest grid level tried (default {STABILITY_MAX_LEVEL})")
     parser.add_argument("--max-time-s", type=float, default=None,
-                        help=f"stability: wall-time budget, s (default {STABILITY_MAX_TIME_S:g}); orbit: "
-                        "optional")
+                        help=f"stability: wall-time budget, s (linear: default {STABILITY_MAX_TIME_S:g}, then it "
+                        "says how much more the next level needs; orbit: none); orbit: optional")
     parser.add_argument("--max-iterations", type=int, default=STABILITY_MAX_ORBITS,
-                        help=f"stability: orbit budget (default {STABILITY_MAX_ORBITS})")
+                        help=f"stability (orbit): orbit budget (default {STABILITY_MAX_ORBITS})")
     parser.add_argument("--orbit-csv", default="gas_journal_orbit.csv", help="orbit: CSV output path")
     parser.add_argument("--whirl-ratio", type=float, nargs="+", help="linear: whirl frequency / rotor speed of the "
                         "coefficients (default: the threshold's)")
@@ -156,39 +174,106 @@ def _finite(value: float | None) -> float | None:
     return value if value is not None and math.isfinite(value) else None
 
 
+def _linear_applies(args: argparse.Namespace) -> bool:
+    """The film can be linearised about a steady state: no external load other than the one an --eccentricity
+    sets, and a grooved rotor only concentric (off centre its film is periodic, not steady)."""
+    return args.load is None and not (args.grooves is not None and args.grooved == "rotor"
+                                      and args.eccentricity is not None)
+
+
+def _level_row(r: LevelThreshold) -> dict:
+    return {"level": r.level, "critical_mass_parameter": _finite(r.mass_parameter),
+            "whirl_ratio": _finite(r.whirl_ratio), "seconds": r.seconds}
+
+
+def _ladder(args: argparse.Namespace, lam: float, max_time_s: float, progress: bool) -> ConvergedThreshold:
+    """The grid-converged linear threshold (one level when --level is given); progress lines on stderr."""
+    def report(r: LevelThreshold) -> None:
+        if progress:
+            print(f"stability linear level {r.level}: Mbar {r.mass_parameter:.4g} (whirl ratio "
+                  f"{r.whirl_ratio:.3f}, {r.seconds:.1f} s)", file=sys.stderr)
+
+    first, last = (args.level, args.level) if args.level is not None else (3, args.max_level)
+    return converged_linear_threshold(_bearing(args), lam, args.eccentricity or 0.0, first_level=first,
+                                      max_level=last, rel_tol=args.grid_tol, max_time_s=max_time_s,
+                                      on_level=report)
+
+
+def _linear_answer(res: ConvergedThreshold) -> dict:
+    return {"method": "linear", "status": res.status, "message": res.message,
+            "critical_mass_parameter": _finite(res.mass_parameter), "grid_error": _finite(res.grid_error),
+            "relative_grid_error": _finite(res.relative_grid_error) if math.isfinite(res.grid_error) else None,
+            "observed_order": _finite(res.observed_order), "whirl_ratio": _finite(res.whirl_ratio),
+            "levels": [_level_row(r) for r in res.levels], "next_level_seconds": _finite(res.next_level_seconds),
+            "wall_time_s": res.wall_time_s}
+
+
 def _stability(args: argparse.Namespace) -> dict:
     low, high = args.mass_range
     require(low < high, "--mass-range", args.mass_range, "LO must be below HI")
+    lam = _single(args)
+    require(lam > 0.0, "--bearing-number", lam, "must be > 0 for a stability threshold")
     if args.eccentricity is not None:
         require(args.load is None, "--load", args.load, "not with --eccentricity (the eccentricity sets the load)")
         require(0.0 < args.eccentricity < 0.9, "--eccentricity", args.eccentricity,
                 "must be in (0, 0.9) for stability (omit it for the unloaded rotor)")
-    budget_s = STABILITY_MAX_TIME_S if args.max_time_s is None else args.max_time_s
-    res = critical_mass_parameter(_bearing(args), _single(args), level=args.level or 3, load=args.load or 0.0,
+    linear_ok = _linear_applies(args)
+    method = args.by if args.by != "auto" else ("linear" if linear_ok else "orbit")
+    require(method != "linear" or linear_ok, "--by", "linear", "needs a steady film: no --load (give "
+            "--eccentricity for a loaded bearing), and no --eccentricity for grooves on the rotor; use --by orbit")
+    if args.level is not None and method == "linear":
+        require(args.level >= 2, "--level", args.level, "must be >= 2 for --by linear")
+    if method == "linear":
+        ladder = _ladder(args, lam, STABILITY_MAX_TIME_S if args.max_time_s is None else args.max_time_s, args.json)
+        if args.json:
+            print(ladder.message, file=sys.stderr)
+        return _linear_answer(ladder)
+    started = time.perf_counter()
+    res = critical_mass_parameter(_bearing(args), lam, level=args.level or 3, load=args.load or 0.0,
                                   eccentricity=args.eccentricity,
                                   start_eccentricity=args.start_eccentricity, duration=args.duration or 40.0,
                                   rel_tol=args.rel_tol, max_trials=args.max_iterations,
                                   mass_range=tuple(args.mass_range),
-                                  max_time_s=budget_s, progress=True)
-    message = res.message + _more_budget(res.status, budget_s, args.max_iterations)
+                                  max_time_s=math.inf if args.max_time_s is None else args.max_time_s,
+                                  progress=True)
+    message = res.message
+    if res.status == "time_budget" and math.isfinite(res.seconds_needed):
+        message += f"; give it more time with --max-time-s {math.ceil(res.wall_time_s + res.seconds_needed):d}"
+    out: dict[str, Any] = {"method": "orbit", "status": res.status,
+           "critical_mass_parameter": _finite(res.critical_mass_parameter), "stable_below": res.stable_below,
+           "unstable_above": res.unstable_above, "whirl_ratio": _finite(res.whirl_ratio),
+           "mass_range": list(res.mass_range), "orbits": len(res.trials), "wall_time_s": res.wall_time_s,
+           "seconds_needed": _finite(res.seconds_needed),
+           "trials": [{"mass_parameter": m, "stable": bool(s), "growth_rate": _finite(g), "whirl_ratio": _finite(w)}
+                      for m, s, g, w in res.trials]}
+    if linear_ok and math.isfinite(res.critical_mass_parameter):
+        grid = _orbit_grid_error(args, lam, res.critical_mass_parameter, args.level or 3, time.perf_counter() - started)
+        out["grid_error"] = grid
+        message += "; " + grid["message"]
+    out["message"] = message
     if args.json:
         print(message, file=sys.stderr)
-    return {"status": res.status, "message": message,
-            "critical_mass_parameter": _finite(res.critical_mass_parameter), "stable_below": res.stable_below,
-            "unstable_above": res.unstable_above, "whirl_ratio": _finite(res.whirl_ratio),
-            "mass_range": list(res.mass_range), "orbits": len(res.trials), "wall_time_s": res.wall_time_s,
-            "trials": [{"mass_parameter": m, "stable": bool(s), "growth_rate": _finite(g), "whirl_ratio": _finite(w)}
-                       for m, s, g, w in res.trials]}
+    return out
 
 
-def _more_budget(status: str, budget_s: float, orbits: int) -> str:
-    """What to give a stability search that ran out of its budget before an answer (a loaded machine runs fewer orbits
-    in the default 110 s): the option and a value three times the budget, or twice the orbits."""
-    if status == TIME_BUDGET:
-        return f"; give it more time with --max-time-s {math.ceil(3.0 * budget_s / 10.0) * 10:g}"
-    if status == ITERATION_BUDGET:
-        return f"; allow more orbits with --max-iterations {2 * orbits}"
-    return ""
+def _orbit_grid_error(args: argparse.Namespace, lam: float, orbit_mbar: float, level: int, spent_s: float) -> dict:
+    """The orbit grid's discretisation error, from the linear threshold on that grid and the grid-converged one
+    (both methods share the discretisation: they agree within ~1 % on one grid, reports/bearings_gas_stability.md)."""
+    budget = STABILITY_MAX_TIME_S if args.max_time_s is None else max(args.max_time_s - spent_s, 1.0)
+    ladder = converged_linear_threshold(_bearing(args), lam, args.eccentricity or 0.0, first_level=min(level, 3),
+                                        max_level=max(args.max_level, level), rel_tol=args.grid_tol,
+                                        max_time_s=budget)
+    on_level = [r for r in ladder.levels if r.level == level and math.isfinite(r.mass_parameter)]
+    if not on_level or not math.isfinite(ladder.mass_parameter) or ladder.mass_parameter == 0.0:
+        return {"message": f"grid error of level {level} not estimated ({ladder.message})"}
+    error = on_level[0].mass_parameter / ladder.mass_parameter - 1.0
+    corrected = orbit_mbar / (1.0 + error)
+    return {"relative_error_of_level": error, "linear_on_level": on_level[0].mass_parameter,
+            "linear_converged": ladder.mass_parameter, "linear_converged_error": _finite(ladder.grid_error),
+            "orbit_corrected": corrected,
+            "message": (f"grid error of level {level}: {100 * error:+.1f} % (linear threshold {on_level[0].mass_parameter:.4g} "
+                        f"there against grid-converged {ladder.mass_parameter:.4g} +- {ladder.grid_error:.2g}); "
+                        f"orbit threshold corrected by it: Mbar ~ {corrected:.4g}")}
 
 
 def _linear(args: argparse.Namespace) -> dict:

@@ -3,11 +3,12 @@
     quenchsim bearings mode2 specimen --crack-mm 6 --width-mm 20 --thickness-mm 5 \
         --shear-load-range-kN 20 --opening-moment-Nm 30 --json
     quenchsim bearings mode2 rcf --p-max-GPa 2.5 6 [--shape line|circle|ellipse --ellipticity 1.7] \
-        [--threshold 3] [--friction 0.5] --json
+        [--threshold 3] [--friction 0.5] [--inclusion-sqrt-area-um 16 24] --json
 
 specimen: Delta K_II and static K_I from the paper's printed fits (sqrt(a) normalisation) and the test-condition
 checks; rcf: critical diameter of a subsurface penny crack at depth b/2 under a rolling Hertz contact
-(defaults: the paper's threshold 3 MPa sqrt(m) and face friction 0.5; nu of bearing steel).
+(defaults: the paper's threshold 3 MPa sqrt(m) and face friction 0.5; nu of bearing steel); with
+--inclusion-sqrt-area-um, each inclusion's sqrt(area) over the critical crack's (above 1: it grows).
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ RANGES = {"crack_mm": LENGTH_MM, "width_mm": LENGTH_MM, "thickness_mm": LENGTH_M
           # the largest Hertz pressures of rolling contacts (static-capacity tests) stay below ~10 GPa
           "p_max_GPa": Range(0.0, 20.0, low_open=True, unit="GPa"),
           "ellipticity": Range(1.0, 20.0), "threshold": Range(0.0, 100.0, low_open=True, unit="MPa sqrt(m)"),
-          "friction": Range(0.0, 2.0)}
+          "friction": Range(0.0, 2.0), "inclusion_sqrt_area_um": Range(0.0, 1e4, low_open=True, unit="um")}
 """Physical ranges of the numeric options (checked before any work, see :mod:`quenchsim.bearings.commands.ranges`)."""
 
 
@@ -44,6 +45,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--ellipticity", type=float, default=None, help="rcf: ellipse semi-axis ratio k in [1, 20]")
     parser.add_argument("--threshold", type=float, default=None, help="rcf: Delta K_IIth, MPa sqrt(m) (default 3)")
     parser.add_argument("--friction", type=float, default=None, help="rcf: crack-face friction (default 0.5)")
+    parser.add_argument("--inclusion-sqrt-area-um", type=float, nargs="+", default=None,
+                        help="rcf: inclusion sizes (Murakami's sqrt(area), um) compared with the critical crack")
 
 
 def _need(args: argparse.Namespace, *names: str) -> None:
@@ -76,8 +79,12 @@ def run(args: argparse.Namespace) -> dict:
         c = mode2.critical_crack(p * 1e9, shape, k, nu=nu,
                                  threshold_Pa_sqrt_m=None if args.threshold is None else args.threshold * 1e6,
                                  friction=args.friction)
-        rows.append({"p_max_GPa": p, "critical_diameter_um": c.critical_diameter_m * 1e6,
-                     "shear_range_MPa": c.shear_range_Pa / 1e6, "shear_range_factor": c.shear_range_factor})
+        row = {"p_max_GPa": p, "critical_diameter_um": c.critical_diameter_m * 1e6,
+               "shear_range_MPa": c.shear_range_Pa / 1e6, "shear_range_factor": c.shear_range_factor}
+        if args.inclusion_sqrt_area_um:
+            row["inclusion_over_critical"] = [mode2.inclusion_over_critical(size * 1e-6, c.critical_diameter_m)
+                                              for size in args.inclusion_sqrt_area_um]
+        rows.append(row)
     d = mode2.crack_data()
     return {"shape": args.shape, "ellipticity": None if args.shape == "line" else k, "nu": nu,
             "threshold_MPa_sqrt_m": args.threshold or d["material"]["delta_K_IIth_MPa_sqrt_m"],

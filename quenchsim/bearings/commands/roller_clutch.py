@@ -7,7 +7,8 @@ roller clutch at one or more transmitted torques.
 
 The free wedge angle is the angle between the cam flat's normal and the bore radius through the roller
 centre with the roller touching both races unloaded; --rigid ignores the elastic take-up. Material: bearing
-steel (data/bearing_steel.toml) unless --E-GPa/--nu.
+steel (data/bearing_steel.toml) unless --E-GPa/--nu. Each state reports the static safety factor of both contacts
+against ISO 76's 4000 MPa (brinelling) and, with --friction, the wedge-hold check.
 """
 
 from __future__ import annotations
@@ -41,7 +42,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--free-wedge-angle-deg", type=float, required=True,
                         help="wedge angle between flat normal and bore radius, unloaded, deg")
     parser.add_argument("--friction", type=float, default=None,
-                        help="friction coefficient at the roller contacts: reports whether the roller stays wedged")
+                        help="friction coefficient at the roller contacts: the wedge-hold check (tan(eps/2) <= mu), "
+                        "its margin and the torque at which the rollers would slip")
     parser.add_argument("--rigid", action="store_true", help="ignore the elastic take-up of contacts and ring")
     parser.add_argument("--fe", action="store_true", help="add the plane-stress FE check of the ring (~10-30 s)")
     parser.add_argument("--E-GPa", type=float, default=None, help="Young's modulus (default: bearing steel)")
@@ -71,8 +73,11 @@ def run(args: argparse.Namespace) -> dict:
         state = rc.analyse(g, torque, compliant=not args.rigid)
         row = state.summary()
         if args.friction is not None:
+            hold = rc.wedge_hold(g, torque, args.friction, compliant=not args.rigid)
             row["friction"] = args.friction
-            row["wedged"] = bool(state.engagement.traction_ratio <= args.friction)
+            row["wedged"] = bool(hold.holds)
+            row["wedge_hold"] = {"required_friction": hold.required_friction, "margin": hold.margin,
+                                 "slip_torque_Nm": hold.slip_torque_Nm if math.isfinite(hold.slip_torque_Nm) else None}
         if args.fe:
             check = rc.fe_check(g, state)
             row["fe_check"] = {"differences_pct": check.differences_pct(), "triangles": check.triangles}

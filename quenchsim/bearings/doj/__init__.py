@@ -6,8 +6,8 @@ docs/reference/other_seed_systems.md section 1.
 
 from quenchsim.bearings.doj.contact import ContactStiffness, contact_stiffness, hayama_fit_stiffness
 from quenchsim.bearings.doj.geometry import (Clearances, DOJGeometry, reference_case, reference_data,
-                                             reference_geometry)
+                                             reference_geometry, scaled_reference_geometry)
 from quenchsim.bearings.doj.model import DOJModel, PhaseResult, hayama_normal_load_N
 
-__all__ = ["Clearances", "DOJGeometry", "reference_case", "reference_data", "reference_geometry", "ContactStiffness",
+__all__ = ["Clearances", "DOJGeometry", "reference_case", "reference_data", "reference_geometry", "scaled_reference_geometry", "ContactStiffness",
            "contact_stiffness", "hayama_fit_stiffness", "DOJModel", "PhaseResult", "hayama_normal_load_N"]

@@ -10,6 +10,7 @@ dimension: every dimension is assumed (data/doj.toml says which).
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import tomllib
@@ -101,6 +102,19 @@ def reference_geometry() -> DOJGeometry:
     g = {k: v for k, v in reference_data()["geometry"].items() if k != "source"}
     steel = steel_properties()
     return DOJGeometry(**g, youngs_modulus_Pa=steel["youngs_modulus_Pa"], poisson=steel["poisson"])
+
+
+def scaled_reference_geometry(pitch_circle_radius_mm: float | None = None) -> DOJGeometry:
+    """The assumed geometry with its ball pitch-circle radius moved to ``pitch_circle_radius_mm`` (None: unchanged);
+    the inner-race sphere and the cage's outer sphere move with it, keeping their radial distances from the pitch
+    circle (3 mm inside, 3 mm outside in data/doj.toml), so the cage stays around the balls."""
+    geo = reference_geometry()
+    if pitch_circle_radius_mm is None:
+        return geo
+    shift = pitch_circle_radius_mm - geo.pitch_circle_radius_mm
+    return dataclasses.replace(geo, pitch_circle_radius_mm=pitch_circle_radius_mm,
+                               inner_race_sphere_radius_mm=geo.inner_race_sphere_radius_mm + shift,
+                               cage_outer_sphere_radius_mm=geo.cage_outer_sphere_radius_mm + shift)
 
 
 def reference_case(case: str) -> Clearances:

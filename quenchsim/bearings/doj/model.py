@@ -64,6 +64,8 @@ RESIDUAL_TOLERANCE = 1e-9  # largest equation residual accepted, relative to P_n
 FD_STEP_MM = 1e-6  # central-difference step of the Jacobian
 MAX_EVALUATIONS = 300
 MAX_HALVINGS = 8  # continuation: largest number of times a phase step is halved
+START_OFFSETS_DEG = (1.3, 7.0, 13.0, 23.0)  # phases near the first one to start a revolution from when it stalls
+HOMOTOPY_STEPS = 4  # first phase: from the joint without clearance at zero angle to the case in this many steps
 
 
 def hayama_normal_load_N(torque_Nm: float, geo: DOJGeometry) -> float:
@@ -98,6 +100,9 @@ class PhaseResult:
     wind_up_rad: float
     residual: float
     state: np.ndarray = field(repr=False)
+    outer_race_axial_N: float = 0.0
+    """Force the balls and the cage exert on the outer race along its axis (the plunge direction): zero without
+    friction, the tracks and the bore being parallel to the axis (axial.py adds the first-order friction part)."""
 
 
 class DOJModel:
@@ -154,19 +159,56 @@ class DOJModel:
 
     # -- solution -----------------------------------------------------------------------------------------
     def solve(self, phase_deg: float, start: np.ndarray | None = None) -> PhaseResult:
-        """Equilibrium at ``phase_deg`` from ``start`` (default :meth:`initial_state`): Levenberg-Marquardt
-        (MINPACK, scipy.optimize.least_squares) on the central-difference Jacobian of the kernel, accepted when
-        every equation is below RESIDUAL_TOLERANCE."""
+        """Equilibrium at ``phase_deg`` from ``start`` (default :meth:`initial_state`, and when that fails the
+        homotopy of :meth:`homotopy_start`): Levenberg-Marquardt (MINPACK, scipy.optimize.least_squares) on the
+        central-difference Jacobian of the kernel, restarted once from where it stalled (a contact opening or
+        closing at the solution makes the Jacobian jump), accepted when every equation is below
+        RESIDUAL_TOLERANCE."""
         phase = math.radians(phase_deg)
         q0 = self.initial_state() if start is None else np.array(start, dtype=float)
-        sol = least_squares(lambda q: kernel.residual(q, phase, self.par), q0, method="lm",
-                            jac=lambda q: kernel.jacobian(q, phase, self.par, FD_STEP_MM), xtol=1e-15, ftol=1e-15,
-                            gtol=1e-15, max_nfev=MAX_EVALUATIONS)
-        worst = float(np.abs(sol.fun).max())
-        if worst > RESIDUAL_TOLERANCE:
-            raise SolverError(f"DOJ equilibrium not found at phase {phase_deg:g} deg (largest residual {worst:.2g} "
-                              f"of P_n after {sol.nfev} evaluations)")
-        return self._result(phase_deg, sol.x)
+        try:
+            return self._result(phase_deg, self._least_squares(phase, phase_deg, q0))
+        except SolverError:
+            if start is not None:
+                raise
+        return self.homotopy_start(phase_deg)
+
+    def _least_squares(self, phase: float, phase_deg: float, q0: np.ndarray) -> np.ndarray:
+        worst, q, evaluations = math.inf, q0, 0
+        for scale in (1.0, "jac"):   # the restart rescales the unknowns by the Jacobian's columns
+            sol = least_squares(lambda q: kernel.residual(q, phase, self.par), q, method="lm",
+                                jac=lambda q: kernel.jacobian(q, phase, self.par, FD_STEP_MM), xtol=1e-15,
+                                ftol=1e-15, gtol=1e-15, max_nfev=MAX_EVALUATIONS, x_scale=scale)
+            q, evaluations = sol.x, evaluations + sol.nfev
+            worst = float(np.abs(sol.fun).max())
+            if worst <= RESIDUAL_TOLERANCE:
+                return q
+        raise SolverError(f"DOJ equilibrium not found at phase {phase_deg:g} deg (largest residual {worst:.2g} "
+                          f"of P_n after {evaluations} evaluations)")
+
+    def homotopy_start(self, phase_deg: float) -> PhaseResult:
+        """Equilibrium at ``phase_deg`` reached from the joint without clearance at zero operating angle (every
+        ball at P_n, :meth:`initial_state` solves it) by scaling the clearances and the angle up together in
+        HOMOTOPY_STEPS steps, each halved on failure up to MAX_HALVINGS times; the same unknowns throughout (the
+        balls' displacements from their nominal positions at each angle)."""
+        angle = math.degrees(self.theta)
+
+        def model(f: float) -> DOJModel:
+            return DOJModel(self.geo, self.clearances.scaled(f), angle * f, self.torque_Nmm * 1e-3, self.k)
+
+        def reach(q: np.ndarray, f0: float, f1: float, depth: int) -> np.ndarray:
+            try:
+                return model(f1)._least_squares(math.radians(phase_deg), phase_deg, q)
+            except SolverError:
+                if depth >= MAX_HALVINGS:
+                    raise
+            middle = reach(q, f0, 0.5 * (f0 + f1), depth + 1)
+            return reach(middle, 0.5 * (f0 + f1), f1, depth + 1)
+
+        q = model(0.0)._least_squares(math.radians(phase_deg), phase_deg, self.initial_state())
+        for k in range(HOMOTOPY_STEPS):
+            q = reach(q, k / HOMOTOPY_STEPS, (k + 1) / HOMOTOPY_STEPS, 0)
+        return self._result(phase_deg, q)
 
     def _result(self, phase_deg: float, q: np.ndarray) -> PhaseResult:
         res = np.empty(N_UNKNOWNS)
@@ -181,10 +223,11 @@ class DOJModel:
         wedge = np.where(loaded, np.degrees(np.arccos(np.clip(cosw, -1.0, 1.0))), np.nan)
         t_out = float(np.cross(x, -fo).sum(axis=0)[2]) * 1e-3
         shaft = fi.sum(axis=0) + f_ic  # minus the forces on the inner race (from the balls and the cage)
+        axial = -float(fo[:, 2].sum() + f_co[2])   # reaction on the outer race of its forces on balls and cage
         return PhaseResult(phase_deg, np.linalg.norm(f_in, axis=-1).sum(axis=0),
                            np.linalg.norm(f_out, axis=-1).sum(axis=0), p_window, wedge, float(np.linalg.norm(f_ic)),
                            float(np.linalg.norm(f_co)), f_ic, f_co, t_out, shaft, float(frame[4, 0]),
-                           float(np.abs(res).max()), q.copy())
+                           float(np.abs(res).max()), q.copy(), axial)
 
     def _continue(self, previous: PhaseResult, phase_deg: float, depth: int = 0) -> PhaseResult:
         """Equilibrium at ``phase_deg`` continued from ``previous``; when the step is too long for the solver (a
@@ -198,8 +241,24 @@ class DOJModel:
         return self._continue(middle, phase_deg, depth + 1)
 
     def revolution(self, phases_deg: np.ndarray) -> list[PhaseResult]:
-        """Equilibria along ``phases_deg`` (continuation: each from the previous one)."""
-        out = [self.solve(float(phases_deg[0]))]
+        """Equilibria along ``phases_deg`` (continuation: each from the previous one). The first phase is solved
+        directly or, where the solver stalls there (a ball exactly where a contact opens), reached by continuation
+        from a nearby phase of START_OFFSETS_DEG; a SolverError names the phases tried when none converges."""
+        out = [self._first(float(phases_deg[0]))]
         for phase in phases_deg[1:]:
             out.append(self._continue(out[-1], float(phase)))
         return out
+
+    def _first(self, phase_deg: float) -> PhaseResult:
+        try:
+            return self.solve(phase_deg)
+        except SolverError as exc:
+            first_error = exc
+        for offset in START_OFFSETS_DEG:
+            try:
+                return self._continue(self.solve(phase_deg + offset), phase_deg)
+            except SolverError:
+                continue
+        raise SolverError(f"DOJ: no equilibrium to start the revolution at phase {phase_deg:g} deg, nor by "
+                          f"continuation from {', '.join(f'{phase_deg + d:g}' for d in START_OFFSETS_DEG)} deg "
+                          f"({first_error}); this geometry and clearance set are outside what the solver handles")

@@ -27,13 +27,14 @@ class Revolution:
     outer_race_torque_Nm: np.ndarray
     shaft_reaction_N: np.ndarray
     p_n_N: float
+    outer_race_axial_N: np.ndarray | None = None
 
     @classmethod
     def from_phases(cls, phases: list[PhaseResult], p_n_N: float) -> "Revolution":
         get = lambda name: np.array([getattr(r, name) for r in phases])  # noqa: E731
         return cls(get("phase_deg"), get("p_inner_N"), get("p_outer_N"), get("p_window_N"), get("wedge_angle_deg"),
                    get("f_inner_cage_N"), get("f_cage_outer_N"), get("outer_race_torque_Nm"),
-                   get("shaft_reaction_N"), p_n_N)
+                   get("shaft_reaction_N"), p_n_N, get("outer_race_axial_N"))
 
 
 def harmonic_amplitude(phase_deg: np.ndarray, values: np.ndarray, order: int) -> float:

@@ -21,13 +21,20 @@ decays as (R/(R + g))^(m+1) instead of exp(-m g / R), 0.1 % apart for 32 pole pa
 
 from __future__ import annotations
 
+import functools
 import math
+import tomllib
 from dataclasses import dataclass
+from importlib import resources
+from typing import Any
 
 import numpy as np
 from scipy.optimize import brentq
 
 from quenchsim.errors import require
+
+MAGNET_DATA = "data/encoder_magnet.toml"
+"""Plastic-bonded ferrite: remanence, coercivity and the temperature coefficient of remanence, with sources."""
 
 @dataclass(frozen=True)
 class Encoder:
@@ -129,3 +136,28 @@ def working_gap_m(encoder: Encoder, switching_field_T: float) -> float:
     while pole_centre_field_T(encoder, hi) > switching_field_T:
         hi *= 2.0
     return brentq(lambda g: pole_centre_field_T(encoder, g) - switching_field_T, 0.0, hi, xtol=1e-12)
+
+
+@functools.cache
+def magnet_data() -> dict[str, Any]:
+    """data/encoder_magnet.toml (bonded ferrite; Modelica Standard Library's PlasticHardFerrite, with ``source``)."""
+    return tomllib.loads(resources.files("quenchsim.bearings").joinpath(MAGNET_DATA).read_text("utf-8"))
+
+
+def remanence_at_temperature_T(remanence_T: float, temperature_C: float, coefficient_per_K: float | None = None,
+                               reference_C: float | None = None) -> float:
+    """B_r(T) = B_r,ref (1 + alpha (T - T_ref)): the reversible temperature law of a magnet's remanence (defaults:
+    bonded ferrite, alpha = -0.002 1/K at 20 C, data/encoder_magnet.toml). The encoder's field is linear in B_r, so
+    it scales alike; the recoil permeability does not change (H_cB follows the same law).
+
+    >>> round(remanence_at_temperature_T(0.2, 120.0), 4), round(remanence_at_temperature_T(0.2, -40.0), 4)
+    (0.16, 0.224)
+    """
+    data = magnet_data()
+    alpha = data["remanence_temperature_coefficient_per_K"] if coefficient_per_K is None else coefficient_per_K
+    t_ref = data["reference_temperature_C"] if reference_C is None else reference_C
+    require(math.isfinite(temperature_C) and -273.15 < temperature_C < 500.0, "temperature_C", temperature_C,
+            "must be in (-273.15, 500) C")
+    factor = 1.0 + alpha * (temperature_C - t_ref)
+    require(factor > 0.0, "temperature_C", temperature_C, f"beyond the linear law's range (factor {factor:.3g})")
+    return remanence_T * factor

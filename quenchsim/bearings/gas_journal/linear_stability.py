@@ -25,6 +25,7 @@ from quenchsim.bearings.gas_journal.linear import LinearisedFilm
 from quenchsim.errors import SolverError, require
 
 WHIRL_SCAN = (0.02, 1.0, 50)  # gamma from, to, points (whirl slower than the rotor)
+NEAR_WINDOW, NEAR_POINTS = 0.08, 9  # scan about a coarser grid's neutral whirls: +-0.08 in gamma, 9 points
 NEUTRAL_TOLERANCE = 1e-6  # a neutral whirl with Re(lambda) above -this x max |lambda| counts (M = 0 when <= 0)
 
 
@@ -46,12 +47,28 @@ def _sorted_like(values: np.ndarray, previous: np.ndarray) -> np.ndarray:
     return values if keep <= swap else values[::-1]
 
 
-def linear_threshold(film: LinearisedFilm, whirl_scan: tuple[float, float, int] = WHIRL_SCAN) -> LinearThreshold:
-    """Lightest rotor with a neutral whirl of ``film`` over whirl ratios ``whirl_scan`` (from, to, points)."""
+def linear_threshold(film: LinearisedFilm, whirl_scan: tuple[float, float, int] = WHIRL_SCAN,
+                     near: tuple[float, ...] = ()) -> LinearThreshold:
+    """Lightest rotor with a neutral whirl of ``film`` over whirl ratios ``whirl_scan`` (from, to, points).
+
+    ``near``: whirl ratios of the neutral whirls found on a coarser grid of the same bearing; the scan is then
+    only over windows of +-``NEAR_WINDOW`` about them (``NEAR_POINTS`` points each, ~1/3 of the full scan's
+    film solves), and falls back to the full scan when no neutral whirl is found there."""
     lo, hi, n = whirl_scan
     require(0.0 < lo < hi and int(n) >= 3, "whirl_scan", whirl_scan, "must be (from, to, points) with "
             "0 < from < to and points >= 3")
-    gammas = np.linspace(lo, hi, int(n))
+    crossings = [c for g in near for c in _crossings(film, np.linspace(max(lo, g - NEAR_WINDOW),
+                                                                         min(hi, g + NEAR_WINDOW), NEAR_POINTS))]
+    if not crossings:
+        crossings = _crossings(film, np.linspace(lo, hi, int(n)))
+    if not crossings:
+        return LinearThreshold(math.nan, math.nan, math.nan, [])
+    gamma, mass = min(crossings, key=lambda c: c[1])
+    return LinearThreshold(mass, 144.0 * mass / film.lam ** 2, gamma, sorted(set(crossings)))
+
+
+def _crossings(film: LinearisedFilm, gammas: np.ndarray) -> list[tuple[float, float]]:
+    """Neutral whirls (whirl ratio, M) between neighbouring whirl ratios of ``gammas`` (ascending)."""
     eig_list = [np.linalg.eigvals(film.impedance(gammas[0]))]
     for g in gammas[1:]:
         eig_list.append(_sorted_like(np.linalg.eigvals(film.impedance(g)), eig_list[-1]))
@@ -73,10 +90,7 @@ def linear_threshold(film: LinearisedFilm, whirl_scan: tuple[float, float, int] 
             # Re(lambda) ~ 0 is the force-free whirl of a concentric plain film (threshold M = 0)
             if lam.real > -NEUTRAL_TOLERANCE * np.abs(eig).max():
                 crossings.append((float(g_star), float(max(lam.real, 0.0) / (2.0 * g_star) ** 2)))
-    if not crossings:
-        return LinearThreshold(math.nan, math.nan, math.nan, [])
-    gamma, mass = min(crossings, key=lambda c: c[1])
-    return LinearThreshold(mass, 144.0 * mass / film.lam ** 2, gamma, sorted(crossings))
+    return crossings
 
 
 def whirl_root(film: LinearisedFilm, mass: float, whirl_guess: complex, tol: float = 1e-10,

@@ -130,3 +130,20 @@ def growth_rates(panels: Sequence[tuple[str, np.ndarray, np.ndarray, Sequence[tu
         ax.set_title(title, fontsize=9)
         ax.legend(fontsize=7)
     return _save(fig, path)
+
+
+def threshold_map(bearing_numbers: np.ndarray, by_level: dict[int, np.ndarray], estimate: np.ndarray,
+                  error: np.ndarray, title: str, path: pathlib.Path) -> pathlib.Path:
+    """Critical Mbar against Lambda (log-log): one line per grid level and the grid-converged estimate with its
+    grid error as error bars (stable below the curve, whirl above)."""
+    fig, ax = subplots(1, 1, figsize=(6.0, 4.0))
+    for level, values in sorted(by_level.items()):
+        ax.loglog(bearing_numbers, values, "-", lw=0.8, alpha=0.7, label=f"linear, level {level}")
+    ok = np.isfinite(estimate)
+    ax.errorbar(bearing_numbers[ok], estimate[ok], yerr=np.where(np.isfinite(error[ok]), error[ok], 0.0), fmt="o-",
+                color="k", capsize=3, label="grid-converged estimate (Richardson) +- grid error")
+    ax.set_xlabel("bearing number Lambda")
+    ax.set_ylabel("critical mass parameter Mbar")
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7)
+    return _save(fig, path)

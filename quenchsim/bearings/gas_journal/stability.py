@@ -19,7 +19,10 @@ whirls). It first runs the two ends of the range: when they do not bracket a thr
 the bracket [stable, unstable] is found from ``first_guess`` by factors of 4 (bounded by the ends)
 and then halved in log(Mbar) until hi / lo <= 1 + rel_tol. The search stops with the bracket found
 so far when it has run ``max_trials`` orbits or ``max_time_s`` seconds (an orbit running past the
-deadline is abandoned).
+deadline is abandoned), and says what it still needs: the bracket's geometric mean, the orbits to a
+bracket within ``rel_tol`` (:func:`orbits_to_converge`) and their time at the seconds per orbit measured.
+The threshold is that of the grid ``level``: the grid error is not estimated here (for a film that can be
+linearised, converged_threshold.py gives it).
 
 Default range MASS_PARAMETER_RANGE = [0.1, 100]: the light end is where the orbits get expensive
 (the step size follows the rotor's natural period, ~ sqrt(M): 0.1 costs ~1600 steps at Lambda 1 over
@@ -41,7 +44,7 @@ from quenchsim.bearings.gas_journal.static import static_characteristics
 from quenchsim.errors import require
 
 START_OFFSET = 0.05  # loaded search: release 5 % of the eccentricity outward of the equilibrium
-MASS_PARAMETER_RANGE = (0.1, 100.0)  # default Mbar range (rotor A-1 at Lambda 1: threshold 9.1, see module docstring)
+MASS_PARAMETER_RANGE = (0.1, 100.0)  # default Mbar range (rotor A-1 at Lambda 1: threshold 8.9 on level 3)
 
 # status of a search: a threshold, no threshold in range (three ways), or a budget ran out first
 BRACKETED = "bracketed"
@@ -67,15 +70,30 @@ class StabilityResult:
     message: str = ""
     mass_range: tuple[float, float] = MASS_PARAMETER_RANGE
     wall_time_s: float = 0.0
+    seconds_needed: float = float("nan")
+    """When a budget stopped the search: the estimated further wall time to a bracket within ``rel_tol``."""
 
 
 class _Budget(Exception):
-    """Internal: the search ran out of orbits or time (``status`` says which)."""
+    """Internal: the search ran out of orbits or time (``status`` says which); ``orbit_fraction``: the share of
+    an abandoned orbit that was run."""
 
-    def __init__(self, status: str, detail: str) -> None:
+    def __init__(self, status: str, detail: str, orbit_fraction: float = 0.0) -> None:
         super().__init__(detail)
         self.status = status
         self.detail = detail
+        self.orbit_fraction = orbit_fraction
+
+
+def orbits_to_converge(lo: float, hi: float, rel_tol: float) -> int:
+    """Bisections in log(Mbar) that narrow the bracket [lo, hi] to hi / lo <= 1 + rel_tol.
+
+    >>> orbits_to_converge(1.0, 4.0, 0.05)
+    5
+    """
+    if hi / lo <= 1.0 + rel_tol:
+        return 0
+    return math.ceil(math.log2(math.log(hi / lo) / math.log1p(rel_tol)))
 
 
 def loaded_start(bearing: Bearing, bearing_number: float, eccentricity: float, level: int,
@@ -142,21 +160,22 @@ def critical_mass_parameter(bearing: Bearing, bearing_number: float, level: int 
                 bar.outcome = res.outcome()
         except WallTimeExceeded as exc:
             raise _Budget(TIME_BUDGET, f"time budget of {max_time_s:g} s reached during orbit {len(trials) + 1} "
-                          f"(Mbar {mbar:.4g}, at T = {exc.time:.3g} of {duration:g})") from None
+                          f"(Mbar {mbar:.4g}, at T = {exc.time:.3g} of {duration:g})", exc.time / duration) from None
         trials.append((mbar, res.stable, res.growth_rate, res.whirl_ratio))
         stable_at[mbar] = res.stable
         whirl_near[mbar] = res.whirl_ratio
         return res.stable
 
-    def result(status: str, message: str, lo: float | None, hi: float | None) -> StabilityResult:
+    def result(status: str, message: str, lo: float | None, hi: float | None,
+               seconds_needed: float = float("nan")) -> StabilityResult:
         if status == BRACKETED:
             assert lo is not None and hi is not None   # a bracket has both ends
             critical = math.sqrt(lo * hi)
         else:
             critical = float("nan")
-        whirl = whirl_near[hi] if hi is not None else float("nan")
+        whirl = whirl_near[hi] if hi is not None and hi in whirl_near else float("nan")
         return StabilityResult(critical, lo, hi, whirl, trials, status, message, (lo_end, hi_end),
-                               time.perf_counter() - started)
+                               time.perf_counter() - started, seconds_needed)
 
     def tally() -> str:
         return f"{len(trials)} orbits in {time.perf_counter() - started:.0f} s"
@@ -205,7 +224,18 @@ def critical_mass_parameter(bearing: Bearing, bearing_number: float, level: int 
         lo_so_far, hi_so_far = bracket()
         so_far = (f"stable at {lo_so_far:.4g}" if lo_so_far is not None else "no stable mass yet") + ", " + (
             f"unstable at {hi_so_far:.4g}" if hi_so_far is not None else "no unstable mass yet")
-        return result(stop.status, f"stopped: {stop.detail}; bracket so far: {so_far} ({span})", lo_so_far,
-                      hi_so_far)
+        if lo_so_far is not None and hi_so_far is not None:
+            so_far += f" (Mbar ~ {math.sqrt(lo_so_far * hi_so_far):.4g} within a factor {hi_so_far / lo_so_far:.3g})"
+            more = orbits_to_converge(lo_so_far, hi_so_far, rel_tol)
+        else:   # the ends still to run, then the bisection of the whole range
+            more = 2 - min(len(trials), 2) + orbits_to_converge(lo_end, hi_end, rel_tol) + 2
+        per_orbit = (time.perf_counter() - started) / max(len(trials) + stop.orbit_fraction, 1e-9) \
+            if trials or stop.orbit_fraction > 0.0 else float("nan")
+        needed = more * per_orbit
+        need = (f"; ~{more} more orbits to a bracket within {100 * rel_tol:g} %" +
+                (f", ~{needed:.0f} s more at {per_orbit:.1f} s per orbit measured here" if math.isfinite(needed)
+                 else ""))
+        return result(stop.status, f"stopped: {stop.detail}; bracket so far: {so_far} ({span}){need}", lo_so_far,
+                      hi_so_far, needed)
     return result(BRACKETED, f"critical Mbar = {math.sqrt(lo * hi):.4g} (stable at {lo:.4g}, unstable at "
                   f"{hi:.4g}; {tally()})", lo, hi)

@@ -13,6 +13,11 @@ Delta K_IIth (:mod:`.sif`). For a crack much smaller than the contact, Delta tau
 
     2a_crit = (2/pi) (Delta K_IIth pi (2 - nu) / (4 c p_max))^2   ~ p_max^-2  exactly.
 
+An inclusion is compared with the critical crack through Murakami's sqrt(area) parameter (Y. Murakami, M. Endo,
+"Effects of defects, inclusions and inhomogeneities on fatigue strength", Int. J. Fatigue 16 (1994) 163: a defect
+acts as a crack of the same projected area): a penny crack of diameter 2a has sqrt(area) = sqrt(pi) a
+(:func:`inclusion_over_critical`).
+
 The paper computes its Fig. 14 curve with the handbook SIF of Murakami (1987, p. 1155) and does not print the
 contact shape; a line contact (c = 0.209 with mu = 0.5) and a circular one (c = 0.154) bound the shapes between.
 """
@@ -101,3 +106,17 @@ def ellipticity_for(shear_range_factor_needed: float, friction: float = 0.5, dep
             f"must lie between the circular {lo:.4f} and the k = 20 {hi:.4f} contact")
     return brentq(lambda k: shear_range_factor("ellipse", k, friction, depth_over_b) - shear_range_factor_needed,
                   1.0, 20.0, xtol=1e-4)
+
+
+def inclusion_over_critical(sqrt_area_m: float, critical_diameter_m: float) -> float:
+    """sqrt(area) of an inclusion over that of the critical penny crack of diameter ``critical_diameter_m``
+    (sqrt(pi (2a/2)^2) = (sqrt(pi) / 2) 2a; Murakami & Endo 1994): above 1 the inclusion, taken as a crack of
+    its area, grows in mode II under that contact.
+
+    >>> round(inclusion_over_critical(math.sqrt(math.pi) * 5e-6, 10e-6), 12)
+    1.0
+    """
+    require(math.isfinite(sqrt_area_m) and sqrt_area_m > 0.0, "sqrt_area_m", sqrt_area_m, "must be > 0")
+    require(math.isfinite(critical_diameter_m) and critical_diameter_m > 0.0, "critical_diameter_m",
+            critical_diameter_m, "must be > 0")
+    return sqrt_area_m / (0.5 * math.sqrt(math.pi) * critical_diameter_m)

@@ -4,7 +4,9 @@ series (n Hertz strips) and, on request, the plane-stress FE check of both.
 
 The case-depth rule of the clutch paper (Okada et al., NTN Technical Review 69 (2001) 39, sec. 5.2: the
 outer race is carburised to at least twice the depth of the maximum shear stress) is reported as
-``min_case_depth_m`` = 2 x the larger max-shear depth of the two contacts.
+``min_case_depth_m`` = 2 x the larger max-shear depth of the two contacts. The static capacity of each contact
+against ISO 76's 4000 MPa for roller bearings (brinelling) is its static safety factor s0 = (4000 MPa / p_max)^2
+(:func:`quenchsim.bearings.hertz.static_safety_factor`; s0 < 1: a brinell dent beyond the standard's 1e-4 D).
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from quenchsim.bearings import hertz
 from quenchsim.bearings.roller_clutch import fe, ring, wedge
 
 
@@ -38,6 +41,10 @@ class ClutchState:
             out[name] = {"p_max_MPa": c.p_max_Pa / 1e6, "half_width_mm": c.half_width_m * 1e3,
                          "depth_max_shear_mm": c.depth_max_shear_m * 1e3, "max_shear_MPa": c.max_shear_Pa / 1e6}
         out["min_case_depth_mm"] = self.min_case_depth_m * 1e3
+        s0 = {name: hertz.static_safety_factor(c.p_max_Pa, "roller") for name, c in (("inner_flat", e.inner),
+                                                                                     ("outer_bore", e.outer))}
+        out["static_capacity"] = {"iso76_limit_MPa": hertz.iso76_limits()["roller_MPa"], "safety_factor": s0,
+                                  "brinelling": bool(min(s0.values()) < 1.0)}
         out["ring_lame"] = {"bore_pressure_MPa": self.lame.pressure_Pa / 1e6,
                             "bore_expansion_mm": self.lame.bore_displacement_m * 1e3,
                             "bore_hoop_MPa": self.lame.bore_hoop_Pa / 1e6, "outer_hoop_MPa": self.lame.outer_hoop_Pa / 1e6}

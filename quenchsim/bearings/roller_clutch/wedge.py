@@ -16,8 +16,11 @@ The torque about the axis (from the bore contact; the flat contact gives the sam
 
     T = n N tan(eps/2) R                                                                          (1)
 
-(n rollers). The roller stays wedged while tan(eps/2) <= mu at both contacts. Elastic take-up makes eps
-grow with the load, so the roller load per unit torque falls as the torque rises.
+(n rollers). The roller stays wedged while tan(eps/2) <= mu at both contacts (the design criterion of
+frictionally engaged clutches, tan(clamping angle) = F_t / F_n <= mu: N. Nagler, A. Lohrengel, Forsch.
+Ingenieurwes. 85 (2021) 1015, eq. 1). Elastic take-up makes eps grow with the load, so the roller load per
+unit torque falls as the torque rises -- and the friction the wedge needs rises: :func:`wedge_hold` gives the
+margin mu / tan(eps/2) and the torque at which the wedge opens to tan(eps/2) = mu and the rollers slip.
 
 Approach of a steel roller on a steel raceway (per contact; Palmgren's empirical line-contact law,
 A. Palmgren, *Ball and Roller Bearing Engineering*, 3rd ed., SKF Industries 1959; as given in
@@ -200,6 +203,48 @@ def free_wedge_angle_for(geometry: ClutchGeometry, torque: float, roller_load_N:
         raise InputError("roller_load_N", roller_load_N,
                          f"the elastic take-up alone opens the wedge beyond tan(eps/2) = {target:.4g} at this load")
     return brentq(excess, 1e-6, hi, xtol=1e-14)
+
+
+@dataclass(frozen=True)
+class WedgeHold:
+    """Self-locking check at one torque: the friction the wedge needs there (tan(eps/2)), the margin
+    ``friction / required_friction`` (>= 1: the rollers stay wedged) and the torque at which the growing wedge
+    angle reaches tan(eps/2) = friction (0: the free wedge already needs more; inf: not within
+    ``HOLD_SEARCH_LOAD_N`` of roller load)."""
+
+    friction: float
+    required_friction: float
+    margin: float
+    holds: bool
+    slip_torque_Nm: float
+    slip_roller_load_N: float
+
+
+HOLD_SEARCH_LOAD_N = 1.0e8
+"""Largest roller load searched for the slip torque (far beyond any steel contact's static capacity)."""
+
+
+def wedge_hold(geometry: ClutchGeometry, torque: float, friction: float, *, compliant: bool = True) -> WedgeHold:
+    """The self-locking check tan(eps/2) <= friction at ``torque`` and the slip torque (module docstring)."""
+    require(math.isfinite(friction) and friction > 0.0, "friction", friction, "must be a positive friction coefficient")
+    e = engage(geometry, torque, compliant=compliant)
+    needed = e.traction_ratio
+
+    def excess(load: float) -> float:
+        return math.tan(wedge_angle_rad(geometry, load, compliant=compliant) / 2.0) - friction
+
+    if excess(0.0) >= 0.0:
+        slip_load, slip_torque = 0.0, 0.0
+    else:
+        load = max(e.roller_load_N, 1.0)
+        while excess(load) < 0.0 and load < HOLD_SEARCH_LOAD_N:
+            load *= 2.0
+        if excess(load) < 0.0:
+            slip_load, slip_torque = math.inf, math.inf
+        else:
+            slip_load = brentq(excess, 0.0, load, xtol=1e-6, rtol=1e-12)
+            slip_torque = torque_Nm(geometry, slip_load, compliant=compliant)
+    return WedgeHold(friction, needed, friction / needed, needed <= friction, slip_torque, slip_load)
 
 
 def roller_from_line_contact(load_N: float, p_max_Pa: float, depth_max_shear_m: float,

@@ -520,6 +520,10 @@ def _write(reports_dir: pathlib.Path) -> list[pathlib.Path]:
         f"Machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores shared with other jobs "
         "(wall times are inflated by the load).",
         "",
+        "Roles: the paper's slips and pocket forces are results of its own simulation, so the targets are "
+        "code-to-code (verification); no printed result fixes an input (the film traction and the cage lands are "
+        "assumed, listed at the end), and the paper prints no measured slip or force of the engine bearing.",
+        "",
         "## Integrator choice (measured)",
         "",
         "Every SciPy method on the same window, starting from the state reached after the settling "

@@ -84,6 +84,19 @@ def run(workdir: pathlib.Path) -> dict:
         "line_nu_0.25": mode2.critical_crack(p, "line", nu=0.25).critical_diameter_m * 1e6,
         "line_nu_0.35": mode2.critical_crack(p, "line", nu=0.35).critical_diameter_m * 1e6}
 
+    # the paper's inclusion check at the 6 GPa test: measured sqrt(area) against the critical crack of each shape
+    inc = data["inclusions"]
+    p_test = inc["test_p_max_GPa"] * 1e9
+    crit = {"line": mode2.critical_crack(p_test, "line", nu=nu).critical_diameter_m,
+            "circle": mode2.critical_crack(p_test, "ellipse", 1.0, nu=nu).critical_diameter_m,
+            "inferred_ellipse": mode2.critical_crack(p_test, "ellipse", k_fit, nu=nu).critical_diameter_m}
+    m["inclusions"] = {"sqrt_area_um": inc["sqrt_area_um"], "lots": inc["lots"],
+                       "critical_2a_um": {k: v * 1e6 for k, v in crit.items()},
+                       "ratio": {k: [mode2.inclusion_over_critical(a * 1e-6, v) for a in inc["sqrt_area_um"]]
+                                 for k, v in crit.items()},
+                       "ratio_to_2a_as_printed": [a * 1e-6 / crit["inferred_ellipse"] for a in inc["sqrt_area_um"]]}
+    m["inclusions"]["min_ratio_over_band"] = min(min(r) for r in m["inclusions"]["ratio"].values())
+
     pressures = np.geomspace(1.5e9, 8e9, 40)
     curves = {"line contact": np.array([mode2.critical_crack(q, "line", nu=nu).critical_diameter_m for q in pressures]),
               "circular contact": np.array([mode2.critical_crack(q, "ellipse", 1.0, nu=nu).critical_diameter_m
@@ -168,6 +181,34 @@ def page(m: dict) -> str:
           f"{sens['line_nu_0.25']:.1f} / {sens['line_nu_0.35']:.1f} um. The mode II reading keeps both points in the band;",
           "the mode III one would not.",
           "",
+          "## Inclusions against the critical size (paper sec. 5)", "",
+          "The paper measured the largest Type II (oxide) inclusions of the SUJ2 lots of its 6 GPa point-contact test "
+          "(sqrt(area) 16 and 24 um) and called them 2-3x the 8.8 um critical size, consistent with mode II driving "
+          "the flaking. Taken as cracks of the same area (Murakami & Endo 1994: a penny crack of diameter 2a has "
+          "sqrt(area) = sqrt(pi) a), each inclusion against the critical crack at 6 GPa:", "",
+          "| lot | sqrt(area) um | / line contact | / circular contact | / ellipse k fitted at 2.5 GPa | sqrt(area) / 2a "
+          "as the paper compares |", "|---|---|---|---|---|---|"]
+    inc = m["inclusions"]
+    for i, (lot, size) in enumerate(zip(inc["lots"], inc["sqrt_area_um"])):
+        L.append(f"| {lot} | {size:g} | {inc['ratio']['line'][i]:.2f} | {inc['ratio']['circle'][i]:.2f} | "
+                 f"{inc['ratio']['inferred_ellipse'][i]:.2f} | {inc['ratio_to_2a_as_printed'][i]:.2f} |")
+    L += ["",
+          f"Both inclusions exceed the critical size for every contact shape of the band (smallest ratio "
+          f"{inc['min_ratio_over_band']:.2f}, the long-life lot against the circular contact): the paper's conclusion "
+          "holds whatever shape its contact had. In its own comparison (sqrt(area) against 2a) the ratios are "
+          f"{inc['ratio_to_2a_as_printed'][0]:.1f} and {inc['ratio_to_2a_as_printed'][1]:.1f}; with the area "
+          f"equivalence {inc['ratio']['inferred_ellipse'][0]:.1f} and {inc['ratio']['inferred_ellipse'][1]:.1f} -- "
+          "the paper's '2-3x'. CLI: `quenchsim bearings mode2 rcf --p-max-GPa 6 --inclusion-sqrt-area-um 16 24`.", "",
+          "## Which printed numbers fixed an input", "",
+          "* The printed F_II and F_I polynomials are the specimen module's input (their table is a transcription "
+          "check, verification).",
+          "* The 50 um at 2.5 GPa fixes the contact ellipticity (k = "
+          f"{r['inferred_ellipticity']:.2f}): the calibration row of the targets; the 8.8 um at 6 GPa then follows "
+          "from the p^-2 scaling of a crack much smaller than the contact, so it tests that scaling (verification), "
+          "not the model's physics.",
+          "* Fig. 14 is the paper's computed curve (Murakami's handbook SIF): the line / circle band around both "
+          "points is a code-to-code comparison (verification). The only measured numbers are the inclusion sizes "
+          "(and the lives behind 'long' / 'short'): the inclusion check is the page's one validation.", "",
           "![critical size](bearing_mode2_critical_size.png) ![pass](bearing_mode2_pass_shear.png)",
           ""]
     return "\n".join(L) + "\n"
