@@ -83,7 +83,8 @@ def cal_table(truth: dict) -> dict:
             {"case": "ring", "quantity": "dimensions_mm.change.id", "value": truth["id"], "uncertainty": NOISE["mm"],
              "source": source}],
         "discrepancy": {"probes": {"scale": 0.5, "unit": "s", "reason": "synthetic: the model is exact"}},
-        "design": {"screening_trajectories": 2, "training_runs": 10, "holdout_runs": 3, "seed": 5},
+        "design": {"screening_trajectories": 2, "training_runs": 10, "holdout_runs": 3, "seed": 5, "refine_waves": 1,
+                   "refine_runs": 4},
         "sampler": {"walkers": 12, "steps": 1000, "burn": 300}}
 
 

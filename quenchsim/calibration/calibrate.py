@@ -34,7 +34,8 @@ import numpy as np
 
 from quenchsim.calibration.conflicts import conflicts, pulls
 from quenchsim.calibration.data import Observable, Term, default_group, read_term
-from quenchsim.calibration.design import latin_hypercube, morris_indices, morris_points, sobol_indices
+from quenchsim.calibration.design import (latin_hypercube, morris_indices, morris_points, sobol_indices,
+                                          spread_subset)
 from quenchsim.calibration.inputs import derived_files
 from quenchsim.calibration.likelihood import Likelihood
 from quenchsim.calibration.posterior import (Posterior, discrepancy_table, posterior_table, predictive_check,
@@ -46,6 +47,10 @@ from quenchsim.errors import InputError
 
 POSTERIOR_SAMPLES_KEPT = 2000
 """Posterior samples written to posterior.json (thinned evenly from the chain)."""
+REFINE = "refine"
+"""The role prefix of the refinement waves' points (``refine1``, ``refine2``, ...)."""
+
+
 @dataclass
 class Design:
     """The design's points by role (unit cube) and each observable's values there (NaN: run failed)."""
@@ -60,8 +65,13 @@ class Design:
     run_wall_s: float = 0.0
 
     def training(self, labels: Sequence[str]) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-        """Nominal + screening + training points whose runs finished, and the values there."""
-        return self._usable(("nominal", "screening", "training"), labels)
+        """Nominal + screening + training (+ refinement) points whose runs finished, and the values there."""
+        return self._usable(("nominal", "screening", "training", *self.waves), labels)
+
+    @property
+    def waves(self) -> list[str]:
+        """The refinement waves' roles, in order."""
+        return sorted((r for r in self.points if r.startswith(REFINE)), key=lambda r: int(r[len(REFINE):]))
 
     def holdout(self, labels: Sequence[str]) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         return self._usable(("holdout",), labels)
@@ -128,9 +138,10 @@ def run_points(spec: CalibrationSpec, points: dict[str, np.ndarray], runs_dir: P
 
 
 def run_design(spec: CalibrationSpec, out: Path, workers: int = 2, progress: bool = True,
-               max_runs: int | None = None) -> Design:
-    """Every run of the design (cached in ``out/runs``) and the observables' values at each point."""
-    points = design_points(spec)
+               max_runs: int | None = None, waves: dict[str, np.ndarray] | None = None) -> Design:
+    """Every run of the design (cached in ``out/runs``) and the observables' values at each point; ``waves``: the
+    refinement waves' points by role, run with the rest."""
+    points = {**design_points(spec), **(waves or {})}
     t0 = time.perf_counter()
     per_point, outcome, n_runs = run_points(spec, points, out / "runs", workers, progress, max_runs,
                                             desc=f"calibrate {spec.name}")
@@ -258,6 +269,25 @@ def _calibrate(spec: CalibrationSpec, out: Path, workers: int, progress: bool, m
         return result
     surrogate, holdout = fit_design(spec, design)
     posterior = infer(spec, surrogate)
+    waves: dict[str, np.ndarray] = {}
+    refine_check: dict[str, dict[str, dict[str, float]]] = {}
+    for wave in range(1, spec.design["refine_waves"] + 1):
+        role = f"{REFINE}{wave}"
+        waves[role] = spread_subset(posterior.u, spec.design["refine_runs"], spec.design["seed"] + 100 + wave)
+        left = None if max_runs is None else max(max_runs - result["runs"]["ran_now"], 0)   # the call's budget
+        design = run_design(spec, out, workers=workers, progress=progress, max_runs=left, waves=waves)
+        _write_design(spec, design, out / "design.json")
+        ran = result["runs"]["ran_now"] + design.ran
+        result["runs"].update(total=design.runs, ran_now=ran, cached=design.runs - ran - len(design.pending),
+                              pending=len(design.pending), failed=design.failed)
+        if design.pending:
+            result["status"] = "incomplete"
+            _write_json(out / "calibration.json", result)
+            return result
+        u_w, y_w = design._usable((role,), target_labels(spec))
+        refine_check[role] = holdout_check(surrogate, u_w, y_w)   # the surrogate so far, where the posterior is
+        surrogate, holdout = fit_design(spec, design)
+        posterior = infer(spec, surrogate)
     lk = likelihood(spec, surrogate)
     factors = posterior.factors(spec.inputs)
     table = posterior_table(posterior, spec.inputs)
@@ -278,10 +308,13 @@ def _calibrate(spec: CalibrationSpec, out: Path, workers: int, progress: bool, m
     sampler = spec.sampler
     result.update({
         "status": "ok", "description": spec.description, "inputs": [inp.path for inp in spec.inputs],
+        "cases": {label: {"mesh": c.mesh, "confirm_mesh": c.confirm_mesh, "file": str(c.path)}
+                  for label, c in spec.cases.items()},
         "data": [{"label": m.label, "kind": m.kind, "group": m.group, "source": m.source,
                   "observables": [o.label for o in m.observables]} for m in spec.measurements],
         "screening": _screening(spec, design, surrogate),
-        "surrogate": {"training_runs": surrogate.n_train, "holdout": holdout},
+        "surrogate": {"training_runs": surrogate.n_train, "holdout": holdout,
+                      "refinement_before_training": refine_check},
         "posterior": table,
         "discrepancy": discrepancy_table(posterior, [g.scale for g in spec.discrepancy],
                                          [g.unit for g in spec.discrepancy]),

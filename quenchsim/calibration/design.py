@@ -5,7 +5,10 @@
 * training: a Latin hypercube (scipy.stats.qmc) added to the screening runs and the nominal run;
 * held-back runs: a second, independent Latin hypercube the surrogate never sees;
 * Sobol first-order and total indices (Saltelli et al., Comput. Phys. Commun. 181 (2010) 259) computed on the
-  surrogate, where they cost nothing.
+  surrogate, where they cost nothing;
+* refinement: runs spread over the posterior of the previous wave (:func:`spread_subset`), so the surrogate is
+  accurate where the posterior is -- the sequential design of calibration (cf. the waves of history matching,
+  Vernon, Goldstein & Bower, Bayesian Analysis 5 (2010) 619).
 
 Every point is a pure function of the seed, so a resumed calibration asks for exactly the same runs.
 """
@@ -59,3 +62,19 @@ def sobol_indices(predict: Callable[[np.ndarray], np.ndarray], d: int, seed: int
     u = sobol_sample.sample(problem, SOBOL_BASE_SAMPLES, calc_second_order=False, seed=seed)
     res = sobol.analyze(problem, predict(u), calc_second_order=False, print_to_console=False, seed=seed)
     return {"S1": [float(x) for x in res["S1"]], "ST": [float(x) for x in res["ST"]]}
+
+
+def spread_subset(samples: np.ndarray, n: int, seed: int) -> np.ndarray:
+    """``n`` of the ``samples`` (m, d) spread over them: greedy farthest-point selection (each next point the sample
+    farthest from those chosen), started at the sample nearest the samples' median; deterministic for a seed (ties
+    and the thinning of a large sample)."""
+    rng = np.random.default_rng(seed)
+    pool = samples if len(samples) <= 4000 else samples[rng.choice(len(samples), 4000, replace=False)]
+    first = int(np.argmin(np.sum((pool - np.median(pool, axis=0)) ** 2, axis=1)))
+    chosen = [first]
+    dist = np.sum((pool - pool[first]) ** 2, axis=1)
+    for _ in range(min(n, len(pool)) - 1):
+        nxt = int(np.argmax(dist))
+        chosen.append(nxt)
+        dist = np.minimum(dist, np.sum((pool - pool[nxt]) ** 2, axis=1))
+    return pool[chosen]

@@ -71,7 +71,8 @@ def fidelity_rows(result: dict[str, Any]) -> list[str]:
     if "confirm" not in confirm:
         return ["The nominal and calibrated points were run on the design's mesh only (no confirm_mesh)."]
     d, c = confirm["design"], confirm["confirm"]
-    rows = [f"Element sizes x{_g(d['mesh'] or 'design')} (design) against x{c['mesh']:g} (full):", "",
+    design = ", ".join(f"{label} x{case['mesh']:g}" for label, case in result.get("cases", {}).items()) or "the design's"
+    rows = [f"Element sizes of the design ({design}) against x{c['mesh']:g} (full):", "",
             "| observable | nominal: design | nominal: full | calibrated: design | calibrated: full |",
             "|---|---|---|---|---|"]
     for label in result["calibrated_run"]:

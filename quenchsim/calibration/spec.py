@@ -35,6 +35,8 @@
     training_runs = 16                   # Latin-hypercube runs added to the screening runs for the surrogate
     holdout_runs = 6                     # runs never trained on: the surrogate's own error
     seed = 19
+    refine_waves = 1                     # then this many waves of runs spread over the posterior so far,
+    refine_runs = 60                     # this many points each (the surrogate sharpened where the posterior is)
 
     [sampler]                            # emcee, all optional
     walkers = 32
@@ -58,7 +60,8 @@ from quenchsim.calibration.inputs import FreeInput, free_input, used_by
 from quenchsim.case import Case, load_case
 from quenchsim.errors import InputError, require
 
-DESIGN_DEFAULTS = {"screening_trajectories": 4, "training_runs": 16, "holdout_runs": 6, "seed": 19}
+DESIGN_DEFAULTS = {"screening_trajectories": 4, "training_runs": 16, "holdout_runs": 6, "seed": 19, "refine_waves": 0,
+                   "refine_runs": 0}
 SAMPLER_DEFAULTS = {"walkers": 32, "steps": 3000, "burn": 1000}
 TOP_KEYS = {"name", "description", "inputs", "cases", "measurements", "predictions", "discrepancy", "design", "sampler"}
 DISCREPANCY_KEYS = ("scale", "unit", "reason")
@@ -243,7 +246,8 @@ def parse_calibration(raw: Mapping[str, Any], base_dir: Path, path: Path | None 
                            description=str(raw.get("description", "")), path=path, inputs=inputs, cases=cases,
                            measurements=tuple(measurements), predictions=predictions, discrepancy=discrepancy,
                            design=_options(raw.get("design", {}), DESIGN_DEFAULTS, "design",
-                                           {"screening_trajectories": 2, "training_runs": 0, "holdout_runs": 1, "seed": 0}),
+                                           {"screening_trajectories": 2, "training_runs": 0, "holdout_runs": 1, "seed": 0,
+                                            "refine_waves": 0, "refine_runs": 0}),
                            sampler=_options(raw.get("sampler", {}), SAMPLER_DEFAULTS, "sampler",
                                             {"walkers": 2 * (len(inputs) + len(discrepancy)) + 2, "steps": 100,
                                              "burn": 0}))
