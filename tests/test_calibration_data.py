@@ -231,3 +231,20 @@ def test_the_guides_example_reads_and_holds_every_kind():
     spec = load_calibration(folder / "ring.cal.toml")
     assert {m.kind for m in spec.measurements} == {"curve", "order", "traverse", "bound", "value"}
     assert len(spec.observables) == 18 and [g.name for g in spec.discrepancy] == ["probes"]
+
+
+def test_the_fast_prediction_is_scikit_learns():
+    """FastGP (Rasmussen & Williams, Algorithm 2.1 with the Matern 5/2 kernel) predicts what scikit-learn's fitted
+    GaussianProcessRegressor predicts, mean and standard deviation."""
+    from quenchsim.calibration.surrogate import fit_surrogate
+
+    rng = np.random.default_rng(0)
+    u = rng.uniform(size=(40, 4))
+    y = 3.0 + 2.0 * np.sin(u @ np.array([2.0, -1.0, 0.5, 3.0])) + 0.1 * u[:, 0] ** 3
+    model = fit_surrogate(u, {"y": y}, seed=1).models["y"]
+    at = rng.uniform(size=(25, 4))
+    mean, sd = model.predict(at, return_std=True)
+    ref_mean, ref_sd = model.fitted.predict(at, return_std=True)
+    np.testing.assert_allclose(mean, ref_mean, rtol=0, atol=1e-10)
+    np.testing.assert_allclose(sd, ref_sd, rtol=0, atol=1e-10)
+    assert np.all(sd > 0) and np.max(np.abs(model.predict(u) - y)) < 0.05   # it interpolates its training data
