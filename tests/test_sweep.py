@@ -138,7 +138,7 @@ def test_failed_case_is_recorded_and_the_rest_go_on_and_rerun_skips_finished(tmp
 
     # nor is a case that another quenchsim version or other material data computed
     import quenchsim.sweep
-    monkeypatch.setattr(quenchsim.sweep, "code_fingerprint", lambda: "another version")
+    monkeypatch.setattr(quenchsim.sweep, "run_fingerprint", lambda: "another version")
     fourth = run_sweep(changed, tmp_path, workers=0, progress=False)
     assert (fourth.skipped, fourth.ran) == (0, 1)
 

@@ -115,6 +115,8 @@ def test_a_user_folder_changes_the_run_fingerprint_but_not_the_studies(project):
     assert code_fingerprint() != shipped_only
     with shipped_data_only():
         assert code_fingerprint() == shipped_only
+        shipped_runs = fingerprint.run_fingerprint()
+    assert fingerprint.run_fingerprint() != shipped_runs   # the run cache's fingerprint reads the user's data too
 
 
 def test_the_fitters_refuse_a_new_file_in_the_shipped_folder(tmp_path, capsys):
