@@ -12,11 +12,13 @@ command checks out into a git worktree and installs into its own venv (``--basel
     python dev/bench.py --baseline-commit cc353be --profile runs/bench/prof --out reports/bench.md
     python dev/bench.py --baseline-commit cc353be --set time.max_dX=0.01 --reference runs/ring_a_fine
 
-Per mesh factor it prints the median wall and CPU time of each side, their ratios, the time per DOF per step,
-and the largest differences of the results (dimension change, probe t500, HRC58 depth, residual hoop stress)
-between the sides and, with ``--reference`` (a run folder of the same case at converged settings, e.g. steps
-refined until the results stop moving), of each side from the reference: a speed-up counts at equal accuracy.
-``--set`` options go to both sides' runs (e.g. the same step control for both).
+Per mesh factor it prints the median wall and CPU time of each side, their ratios, the median time of each stage of
+the run on each side and its ratio, the time per DOF per step, the largest differences of the results (dimension
+change, probe t500, HRC58 depth, residual hoop stress) between the sides, and the largest relative difference over
+every number of summary.json that both sides write (timings left out) and every value of probes.csv; with
+``--reference`` (a run folder of the same case at converged settings, e.g. steps refined until the results stop
+moving), of each side from the reference too: a speed-up counts at equal accuracy. The 1-minute load average is
+taken before each run. ``--set`` options go to both sides' runs (e.g. the same step control for both).
 """
 
 from __future__ import annotations
@@ -35,6 +37,8 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 import quenchsim
 
 CASE = "cases/crb_outer_ring.toml"
@@ -42,6 +46,8 @@ CONDITION = "1"
 PROBE_SCRIPT = "import pathlib, quenchsim; print(pathlib.Path(quenchsim.__file__).resolve().parents[1])"
 STAGES = ("thermal_metallurgy_s", "mechanics_s")
 """The stages of the time loop: their sum per DOF per step is the cost that should not grow with the mesh."""
+TIMING_KEYS = ("solver.wall_time_s", "solver.stage_time_s.")
+"""summary.json numbers that are timings (or start with these), not results: left out of the sides' comparison."""
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -130,7 +136,7 @@ def run_once(python: str, env: dict[str, str], root: Path, case: str, condition:
     prefix = [python] + (["-m", "cProfile", "-o", str(profile)] if profile else []) + ["-m", "quenchsim.cli"]
     cmd = prefix + ["run", str(case_path), "--condition", condition, "--out", str(out), "--quiet",
                     *mesh_overrides(case_path, factor), *(a for o in overrides for a in ("--set", o))]
-    cpu0, t0 = children_cpu_s(), time.perf_counter()
+    load, cpu0, t0 = os.getloadavg()[0], children_cpu_s(), time.perf_counter()
     proc = subprocess.run(cmd, env=env, capture_output=True, text=True, cwd=root)
     wall, cpu = time.perf_counter() - t0, children_cpu_s() - cpu0
     if proc.returncode != 0:
@@ -141,7 +147,45 @@ def run_once(python: str, env: dict[str, str], root: Path, case: str, condition:
     return {"wall_s": wall, "cpu_s": cpu, "loop_s": loop, "steps": solver["steps"], "dofs": solver["dofs"],
             "loop_us_per_dof_step": 1e6 * loop / (solver["dofs"] * solver["steps"]),
             "wall_us_per_dof_step": 1e6 * wall / (solver["dofs"] * solver["steps"]),
-            "stage_time_s": solver["stage_time_s"], "results": results_of(summary)}
+            "stage_time_s": solver["stage_time_s"], "results": results_of(summary), "load_1min": load,
+            "out": str(out)}
+
+
+def summary_numbers(summary: Any, prefix: str = "") -> dict[str, float]:
+    """Every number of a summary.json (nested keys joined by dots, list items by [i]), timings left out."""
+    if isinstance(summary, dict):
+        return {k: v for key, sub in summary.items() for k, v in summary_numbers(sub, f"{prefix}{key}.").items()}
+    if isinstance(summary, list):
+        return {k: v for i, sub in enumerate(summary) for k, v in summary_numbers(sub, f"{prefix[:-1]}[{i}].").items()}
+    name = prefix[:-1]
+    if isinstance(summary, bool) or not isinstance(summary, (int, float)) or name.startswith(TIMING_KEYS):
+        return {}
+    return {name: float(summary)}
+
+
+def relative_difference(a: float, b: float) -> float:
+    """|a - b| over the larger magnitude (0 for equal numbers, NaN and NaN included)."""
+    if a == b or (a != a and b != b):
+        return 0.0
+    return abs(a - b) / max(abs(a), abs(b))
+
+
+def equality(old_out: Path, new_out: Path) -> dict[str, Any]:
+    """The largest relative difference between two runs over every summary.json number both write (timings left
+    out) and over every probes.csv value, with where it is and what only one side writes."""
+    old = summary_numbers(json.loads((old_out / "summary.json").read_text()))
+    new = summary_numbers(json.loads((new_out / "summary.json").read_text()))
+    common = [k for k in old if k in new]
+    worst = max(common, key=lambda k: relative_difference(old[k], new[k]), default=None)
+    probes_old = np.genfromtxt(old_out / "probes.csv", delimiter=",", skip_header=1)
+    probes_new = np.genfromtxt(new_out / "probes.csv", delimiter=",", skip_header=1)
+    same_shape = probes_old.shape == probes_new.shape
+    probe_diff = (float(np.max(np.vectorize(relative_difference)(probes_old, probes_new), initial=0.0))
+                  if same_shape else float("nan"))
+    return {"summary_numbers": len(common), "summary_max_rel": relative_difference(old[worst], new[worst]) if worst else 0.0,
+            "summary_max_rel_key": worst, "only_baseline": sorted(set(old) - set(new)),
+            "only_current": sorted(set(new) - set(old)), "probe_values": int(probes_new.size) if same_shape else 0,
+            "probes_same_shape": same_shape, "probes_max_rel": probe_diff}
 
 
 def compare(old: dict[str, float], new: dict[str, float]) -> dict[str, float]:
@@ -170,7 +214,7 @@ def markdown(record: dict[str, Any]) -> str:
           f"{record['machine']}: {record['repeat']} runs per side and mesh factor, the two sides alternating "
           "(baseline, this code, baseline, ...), each a separate `quenchsim run` process; medians. Other load on "
           f"the machine: 1-minute load average {record['load_before']:.1f} before and {record['load_after']:.1f} "
-          "after the benchmark.", "",
+          f"after the benchmark, {_load_range(record)} before the single runs.", "",
           f"Baseline: `{record['baseline']}`; this code: `{record['current']}`."
           + (f" Case overrides for both sides: `{' '.join(record['overrides'])}`." if record.get("overrides") else ""), "",
           "| mesh factor | DOFs | steps (baseline / this code) | baseline wall s | this code wall s | speed-up (wall) "
@@ -182,6 +226,21 @@ def markdown(record: dict[str, Any]) -> str:
                   f"{row['baseline_cpu_s']:.1f} | {row['current_cpu_s']:.1f} | **{row['cpu_speedup']:.2f}** | "
                   f"{row['baseline_loop_us_per_dof_step']:.2f} | {row['current_loop_us_per_dof_step']:.2f} | "
                   f"{_differences_text(row['largest_differences'])} |")
+    md += ["", "Median time of each stage of the run (`summary.json` solver.stage_time_s) and its ratio, baseline over this "
+           "code:", "", "| mesh factor | stage | baseline s | this code s | speed-up |", "|---|---|---|---|---|"]
+    md += [f"| {row['mesh_factor']:g} | {stage} | {old:.2f} | {new:.2f} | **{old / new if new > 0 else float('nan'):.2f}** |"
+           for row in record["rows"] for stage, (old, new) in row["stages"].items()]
+    md += ["", "The sides' results compared number by number (the first run of each side): every number of "
+           "`summary.json` that both write (timings left out) and every value of `probes.csv`; the keys only one side "
+           "writes are listed.", "", "| mesh factor | summary numbers compared | largest relative difference (key) | "
+           "probe values compared | largest relative difference | only the baseline writes | only this code writes |",
+           "|---|---|---|---|---|---|---|"]
+    for row in record["rows"]:
+        eq = row["equality"]
+        md.append(f"| {row['mesh_factor']:g} | {eq['summary_numbers']} | {eq['summary_max_rel']:.2g}"
+                  f"{_worst_key_text(eq)} | "
+                  f"{eq['probe_values'] if eq['probes_same_shape'] else 'different shapes'} | {eq['probes_max_rel']:.2g} | "
+                  f"{_keys_text(eq['only_baseline'])} | {_keys_text(eq['only_current'])} |")
     if record.get("reference"):
         md += ["", f"Largest differences from the reference run `{record['reference']}`:", "",
                "| mesh factor | baseline | this code |", "|---|---|---|"]
@@ -199,6 +258,23 @@ def markdown(record: dict[str, Any]) -> str:
                "|---|---|---|---|"]
         md += [f"| `{r['function']}` | {r['calls']} | {r['own_s']:.2f} | {r['cumulative_s']:.2f} |" for r in rows]
     return "\n".join(md) + "\n"
+
+
+def _worst_key_text(eq: dict[str, Any]) -> str:
+    return f" (`{eq['summary_max_rel_key']}`)" if eq["summary_max_rel"] > 0 else ""
+
+
+def _load_range(record: dict[str, Any]) -> str:
+    loads = [r["load_1min"] for row in record["rows"] for side in row["runs"].values() for r in side]
+    return f"{min(loads):.1f}-{max(loads):.1f}" if loads else "not taken"
+
+
+def _keys_text(keys: list[str], most: int = 6) -> str:
+    """A few keys of a list (``probes.P1.HRC``...), with the count of the rest."""
+    if not keys:
+        return "none"
+    shown = ", ".join(f"`{k}`" for k in keys[:most])
+    return shown + (f" and {len(keys) - most} more" if len(keys) > most else "")
 
 
 def _differences_text(diffs: dict[str, float]) -> str:
@@ -260,6 +336,10 @@ def run(args: argparse.Namespace) -> int:
                **{f"{s}_loop_us_per_dof_step": median_of(runs[s], "loop_us_per_dof_step") for s in runs},
                **{f"{s}_loop_s": median_of(runs[s], "loop_s") for s in runs},
                "largest_differences": largest_differences(runs["baseline"], runs["current"]),
+               "stages": {stage: tuple(statistics.median(r["stage_time_s"].get(stage, 0.0) for r in runs[side])
+                                       for side in ("baseline", "current"))
+                          for stage in dict.fromkeys(k for side in runs.values() for r in side for k in r["stage_time_s"])},
+               "equality": equality(Path(runs["baseline"][0]["out"]), Path(runs["current"][0]["out"])),
                "differences": compare(runs["baseline"][0]["results"], runs["current"][0]["results"]),
                "runs": runs}
         if reference:

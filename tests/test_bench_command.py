@@ -52,9 +52,39 @@ def test_report_states_cpu_ratio_overrides_and_differences_from_the_reference():
     row = {"mesh_factor": 1.0, "dofs": 4941, "steps": 725, "baseline_steps": 725, "baseline_wall_s": 60.0,
            "current_wall_s": 40.0, "speedup": 1.5, "baseline_cpu_s": 50.0, "current_cpu_s": 25.0, "cpu_speedup": 2.0,
            "baseline_loop_us_per_dof_step": 20.0, "current_loop_us_per_dof_step": 10.0, "largest_differences": diffs,
-           "from_reference": {"baseline": diffs, "current": dict(diffs, hoop_MPa=1.0)}}
+           "from_reference": {"baseline": diffs, "current": dict(diffs, hoop_MPa=1.0)},
+           "stages": {"thermal_metallurgy_s": (30.0, 10.0), "mechanics_s": (20.0, 15.0)},
+           "equality": {"summary_numbers": 141, "summary_max_rel": 1.4e-12, "summary_max_rel_key": "residual.hoop",
+                        "only_baseline": [], "only_current": ["probes.P1.HRC"], "probe_values": 1962,
+                        "probes_same_shape": True, "probes_max_rel": 0.0},
+           "runs": {"baseline": [{"load_1min": 4.2}], "current": [{"load_1min": 5.5}]}}
     record = {"case": "c.toml", "condition": "1", "machine": "m", "repeat": 1, "load_before": 1.0, "load_after": 1.0,
               "baseline": "b", "current": "c", "rows": [row], "overrides": ["time.max_dX=0.01"], "reference": "runs/fine"}
     text = bench.markdown(record)
     assert "**2.00**" in text and "`time.max_dX=0.01`" in text and "725 / 725" in text
     assert "`runs/fine`" in text and "hoop 1 MPa" in text
+    assert "| thermal_metallurgy_s | 30.00 | 10.00 | **3.00** |" in text and "4.2-5.5 before the single runs" in text
+    assert "| 141 | 1.4e-12 (`residual.hoop`) | 1962 | 0 | none | `probes.P1.HRC` |" in text
+
+
+def _run_folder(path, summary, probes):
+    path.mkdir()
+    (path / "summary.json").write_text(__import__("json").dumps(summary))
+    (path / "probes.csv").write_text("time_s,P1\n" + "\n".join(f"{t},{T}" for t, T in probes) + "\n")
+    return path
+
+
+def test_the_sides_are_compared_on_every_summary_number_and_probe_value_but_the_timings(tmp_path):
+    old = _run_folder(tmp_path / "old", {"solver": {"wall_time_s": 30.0, "stage_time_s": {"mechanics_s": 20.0},
+                                                    "steps": 325}, "dims": [1.0, 2.0], "status": "ok",
+                                         "probes": {"P1": {"t_to_500C_s": 8.0}}},
+                      [(0.0, 845.0), (1.0, 700.0)])
+    new = _run_folder(tmp_path / "new", {"solver": {"wall_time_s": 10.0, "stage_time_s": {"mechanics_s": 5.0},
+                                                    "steps": 325}, "dims": [1.0, 2.0 * (1 + 1e-12)], "status": "ok",
+                                         "probes": {"P1": {"t_to_500C_s": 8.0, "HRC": 61.0}}},
+                      [(0.0, 845.0), (1.0, 700.0 * (1 - 2e-13))])
+    eq = bench.equality(old, new)
+    assert eq["summary_numbers"] == 4      # steps, the two dims, t500: the timings are left out
+    assert abs(eq["summary_max_rel"] - 1e-12) < 1e-15 and eq["summary_max_rel_key"] == "dims[1]"
+    assert eq["only_current"] == ["probes.P1.HRC"] and eq["only_baseline"] == []
+    assert eq["probe_values"] == 4 and abs(eq["probes_max_rel"] - 2e-13) < 1e-16

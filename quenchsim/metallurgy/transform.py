@@ -20,6 +20,10 @@ Martensite (Koistinen-Marburger, incremental): below T_ref = min(Ms, lowest T re
 from T_ref to T turns the austenite left by 1 - exp(-alpha (T_ref - T)); this reproduces
 f_M = f_A(Ms) (1 - exp(-alpha (Ms - T))) on cooling, never removes martensite on re-heating and forms
 new martensite only below the previous lowest temperature.
+
+:func:`advance` runs this per point in a compiled kernel (:mod:`quenchsim.metallurgy.kernels`);
+:func:`advance_reference` is the same algorithm in NumPy, vectorised over the points per sub-step, the reference
+the kernel is tested against.
 """
 
 from __future__ import annotations
@@ -29,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from quenchsim.materials.properties import PHASES
+from quenchsim.metallurgy import kernels
 from quenchsim.metallurgy.kinetics import Kinetics
 from quenchsim.metallurgy.laws import koistinen_marburger
 
@@ -124,11 +129,9 @@ def _diffusional_increments(kin: Kinetics, q: dict[str, np.ndarray], Ta: np.ndar
     return dq
 
 
-def advance(state: PhaseState, kin: Kinetics, T_old_C: np.ndarray, T_new_C: np.ndarray, dt_s: float) -> PhaseState:
-    """The state after a step of dt_s during which T goes linearly from T_old_C to T_new_C (pure function).
-
-    Each point takes m_i = ceil(|T_new - T_old| / substep_K) equal sub-steps (at least one).
-    """
+def _step_temperatures(state: PhaseState, T_old_C: np.ndarray, T_new_C: np.ndarray, dt_s: float
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """The step's start and end temperatures as flat arrays of the state's points (checked finite, dt_s >= 0)."""
     shape = state.T_min_C.shape
     T0 = np.broadcast_to(np.asarray(T_old_C, dtype=float), shape).reshape(-1)
     T1 = np.broadcast_to(np.asarray(T_new_C, dtype=float), shape).reshape(-1)
@@ -136,6 +139,68 @@ def advance(state: PhaseState, kin: Kinetics, T_old_C: np.ndarray, T_new_C: np.n
         raise ValueError("advance: temperatures must be finite")
     if not dt_s >= 0.0:
         raise ValueError(f"advance: dt_s = {dt_s} must be >= 0")
+    return T0, T1
+
+
+def advance(state: PhaseState, kin: Kinetics, T_old_C: np.ndarray, T_new_C: np.ndarray, dt_s: float) -> PhaseState:
+    """The state after a step of dt_s during which T goes linearly from T_old_C to T_new_C (pure function).
+
+    Each point takes m_i = ceil(|T_new - T_old| / substep_K) equal sub-steps (at least one); a sub-step level (the
+    k-th sub-step of every point that has one) is a few compiled passes (:mod:`quenchsim.metallurgy.kernels`) and the
+    laws on compact arrays of the sub-steps that need them. The same numbers as :func:`advance_reference`.
+    """
+    shape = state.T_min_C.shape
+    T0, T1 = _step_temperatures(state, T_old_C, T_new_C, dt_s)
+    T0, T1 = np.ascontiguousarray(T0), np.ascontiguousarray(T1)
+    dT = T1 - T0
+    m = np.maximum(np.ceil(np.abs(dT) / kin.substep_K), 1.0)
+    n = T0.size
+    fA = np.array(state.fractions["austenite"], dtype=float).reshape(-1)
+    X = np.stack([np.asarray(state.fractions[p], dtype=float).reshape(-1) for p in PHASES])   # products in rows 1..
+    q = {r: np.array(state.additivity[r], dtype=float).reshape(-1) for r in kin.reactions}
+    T_min = np.array(state.T_min_C, dtype=float).reshape(-1)
+    reactions = list(kin.reactions.items()) if dt_s > 0.0 else []
+    rows = np.array([PHASES.index(r) for r, _ in reactions], dtype=np.int64)
+    Ta, Tb, h, f, T_mid, hs, total, x = (np.empty(n) for _ in range(8))
+    T_gauss, tasks, d = np.empty(2 * n), np.empty(n, dtype=np.int64), np.zeros((len(reactions), n))
+    everyone = np.arange(n)
+    for k in range(int(m.max(initial=1.0))):
+        points = everyone if k == 0 else np.flatnonzero(m > k)   # points still sub-stepping
+        count = points.size
+        kernels.substep_temperatures(T0, dT, m, k, points, float(dt_s), fA, Ta, Tb, h, f)
+        if reactions:
+            for r, (name, reaction) in enumerate(reactions):
+                d[r, :count] = 0.0
+                c = kernels.cold_substeps(Ta, Tb, h, count, reaction.T_upper_C, _GAUSS[0], _GAUSS[1], tasks, T_gauss,
+                                          T_mid, hs)
+                if c:
+                    rate = reaction.inverse_tau(T_gauss[:2 * c])
+                    dI = 0.5 * hs[:c] * (rate[:c] + rate[c:])
+                    exponent = reaction.exponent(T_mid[:c])
+                    qs = q[name][points[tasks[:c]]]
+                    q_new = np.minimum((qs ** (1.0 / exponent) + dI) ** exponent, Q_MAX)
+                    kernels.scatter_increments(q[name], points, tasks, c, q_new, d[r])
+            kernels.total_increments(d, count, total)
+            kernels.share_out(X, rows, points, d, total, np.expm1(-total[:count]), f, count)
+        kernels.martensite_exponent(points, T_min, kin.Ms_C, kin.alpha_per_K, Tb, count, x)
+        kernels.form_martensite(points, f, np.expm1(x[:count]), Tb, count, X[PHASES.index("martensite")], fA, T_min)
+
+    rate_700 = np.array(state.cooling_rate_700_C_s, dtype=float).reshape(-1)
+    if dt_s > 0.0:
+        crossing = np.isnan(rate_700) & (T0 > MAYNIER_RATE_T_C) & (T1 <= MAYNIER_RATE_T_C)
+        rate_700[crossing] = dT[crossing] / -dt_s
+    fractions = {"austenite": np.maximum(fA, 0.0).reshape(shape), **{p: X[i].reshape(shape)
+                                                                    for i, p in enumerate(PHASES) if i > 0}}
+    return PhaseState(fractions=fractions, additivity={r: v.reshape(shape) for r, v in q.items()},
+                      T_min_C=T_min.reshape(shape), cooling_rate_700_C_s=rate_700.reshape(shape))
+
+
+def advance_reference(state: PhaseState, kin: Kinetics, T_old_C: np.ndarray, T_new_C: np.ndarray, dt_s: float
+                      ) -> PhaseState:
+    """:func:`advance` in NumPy, each sub-step vectorised over the points that still need it (the reference of the
+    compiled kernel; the same arithmetic per point, tests/test_metallurgy_kernels.py)."""
+    shape = state.T_min_C.shape
+    T0, T1 = _step_temperatures(state, T_old_C, T_new_C, dt_s)
     dT = T1 - T0
     m = np.maximum(np.ceil(np.abs(dT) / kin.substep_K), 1.0)
 

@@ -27,12 +27,21 @@ BAR_FORMAT = "{desc}: {percentage:3.0f}%|{bar}| [{elapsed}{postfix}]"
 """The postfix carries the simulated seconds (one decimal) and the time left."""
 STEPS = 1000
 """The bar counts thousandths of the run's work."""
+UPDATE_EVERY_S = 0.5
+"""Seconds of the bar's clock between two updates of the bar and its estimate (:meth:`RunProgress.due`); the steps in
+between are only recorded for the price of a step (:meth:`TimeLeft.record`). An update costs ~0.5 ms (1.4 ms with
+the forecast checks) and updating after every step took 2.5 % of ring A condition 1's CPU time (issue 48)."""
 FORECAST_EVERY_STEPS = 16
 """Steps between two forecasts of the pearlite + bainite still to form (each costs about a step's metallurgy)."""
+FORECAST_EVERY_S = 3.0
+"""And seconds of the bar's clock between them, at least: a forecast costs 10-15 ms (ring A condition 1, 431 points
+of 13,800), so at every 16 steps the forecasts alone took 1.4 % of the run's CPU time; every 3 s they take < 0.5 %."""
 MARTENSITE_FORECAST_EVERY_STEPS = 8
 """Steps between two forecasts of the stress steps the martensite still needs (:meth:`CoolingProgress._martensite_steps`;
 each costs a few milliseconds): where a front crosses the section, 16 steps are some 50 stress steps, over which the
 forecast less what was taken since went stale."""
+MARTENSITE_FORECAST_EVERY_S = 1.0
+"""And seconds of the bar's clock between them, at least (a forecast costs 1-3 ms)."""
 PACE_MIN_STEPS = 8
 """Steps of the phase-fraction limit before their pace (pearlite + bainite formed per step) is taken as known."""
 FILM_PACE_SHARE = 0.1
@@ -79,7 +88,9 @@ class StepState:
     martensite formed so far; ``martensite_limit_steps``: asked only when the estimate needs it, the steps a limit of
     ``time.mechanics_max_dX`` on the martensite still needs
     (:func:`quenchsim.progress.forecasts.martensite_limit_steps_to_come`; None: no martensite to form);
-    ``stress_steps_done``: the stress steps taken so far."""
+    ``stress_steps_done``: the stress steps taken so far; ``clock_s``: the bar's clock, for the forecasts' spacing
+    (:data:`FORECAST_EVERY_S`; NaN: no clock, the steps alone space them); ``limited_by_phase_change`` holds if the limit held at any step since the last
+    update."""
 
     steps_done: int
     time_s: float
@@ -100,6 +111,7 @@ class StepState:
     martensite_fraction: float = 0.0
     martensite_limit_steps: Callable[[], float] | None = None
     stress_steps_done: int = 0
+    clock_s: float = math.nan
 
 
 class CoolingProgress:
@@ -127,7 +139,7 @@ class CoolingProgress:
       temperature limit ``time.max_dT_K`` (the limit holds at the surface first, inside later; steps at 90 % of
       the limit, as the controller aims); the steps of the pearlite/bainite limit, :data:`STEPS_PER_LIMIT_OF_MEAN`
       times the mean pearlite + bainite still to form (:func:`quenchsim.progress.forecasts.diffusional_fraction_to_come`,
-      each point cooling on at its own rate, asked every :data:`FORECAST_EVERY_STEPS` steps) over 0.9 ``max_dX``,
+      each point cooling on at its own rate, asked every :data:`FORECAST_EVERY_STEPS` steps and :data:`FORECAST_EVERY_S`) over 0.9 ``max_dX``,
       counted as far as the incubation of pearlite or bainite has run somewhere (``incubation_share``: the limit
       holds only those, which form once incubated); and the steps the growth factor needs to reach
       ``time.dt_max_s``. Once no film holds, the least of that count and the steps so far scaled by the cooling
@@ -168,6 +180,7 @@ class CoolingProgress:
         self._phase_change_start: tuple[int, float] | None = None   # (steps, diffusional fraction) when it first held
         self._forecast: tuple[int, float, float] | None = None      # (steps, diffusional fraction, to come) when asked
         self._martensite: tuple[int, int, float, float] | None = None  # (steps, stress steps, martensite, forecast)
+        self._forecast_clock_s = self._martensite_clock_s = -math.inf   # the bar's clock when they were asked
 
     def fraction(self, T_nodes_C: np.ndarray) -> float:
         return float(min(max((self.T_start_C - float(np.mean(T_nodes_C))) / self.span_K, 0.0), 1.0))
@@ -245,13 +258,15 @@ class CoolingProgress:
         """The stress steps the martensite still needs: a thermal step that forms more than ``mechanics_max_dX`` of
         martensite anywhere is split into as many stress steps, so where a martensite front crosses the section they
         outnumber the thermal steps (the water-quenched peer race: 642 for 214). The forecast
-        (``now.martensite_limit_steps``, asked every :data:`MARTENSITE_FORECAST_EVERY_STEPS` steps, less the steps taken
+        (``now.martensite_limit_steps``, asked every :data:`MARTENSITE_FORECAST_EVERY_STEPS` steps and :data:`MARTENSITE_FORECAST_EVERY_S`, less the steps taken
         since: the stress steps taken or the mean martensite formed over 0.9 of the limit, whichever is more) counts
         all the austenite left; the share of it that pearlite and bainite will take first (:meth:`_to_come`) forms no
         martensite, so it is scaled by the rest."""
         if now.martensite_limit_steps is None or now.austenite_fraction <= 0.0:
             return 0.0
-        if self._martensite is None or now.steps_done - self._martensite[0] >= MARTENSITE_FORECAST_EVERY_STEPS:
+        if self._martensite is None or (now.steps_done - self._martensite[0] >= MARTENSITE_FORECAST_EVERY_STEPS
+                                        and not now.clock_s - self._martensite_clock_s < MARTENSITE_FORECAST_EVERY_S):
+            self._martensite_clock_s = now.clock_s
             steps = now.martensite_limit_steps()     # NaN while the section is not cooling: the last one holds
             if not math.isnan(steps):
                 self._martensite = (now.steps_done, now.stress_steps_done, now.martensite_fraction, steps)
@@ -264,6 +279,19 @@ class CoolingProgress:
                     (now.martensite_fraction - formed_then) / (TARGET * self.mechanics_max_dX))
         return max(steps - taken, 0.0) * max(now.austenite_fraction - self._to_come(now), 0.0) / now.austenite_fraction
 
+    def record_film(self, time_s: float, steps_done: int, film_excess_K: float, film_wetted_share: float) -> None:
+        """The film's state after a step (:class:`StepState`'s fields of that name), once per step: the steps between
+        two updates of the bar are recorded too, since the film's pace is taken over the last
+        :data:`FILM_PACE_SHARE` of its time (at an update every ~5-10 steps that window held no earlier record and
+        no estimate was given for a third of ring A's run) and the first wetting is dated to its step."""
+        if film_excess_K <= 0.0:
+            self._film, self._wetting = [], None
+            return
+        if not self._film or self._film[-1][:2] != (time_s, steps_done):
+            self._film.append((time_s, steps_done, film_excess_K))
+        if self._wetting is None and film_wetted_share > 0.0:
+            self._wetting = (time_s, steps_done)
+
     def _film_steps(self, now: StepState) -> float:
         """The steps until the vapour film collapses everywhere (0 with no film): the film's time left (the surface
         point farthest above its collapse temperature reaching it at the pace it cools over the last
@@ -274,13 +302,9 @@ class CoolingProgress:
         nothing of them. NaN (not known) until :data:`PACE_MIN_STEPS` steps have passed since a point first wetted,
         and while the farthest point has not cooled over the last :data:`FILM_PACE_SHARE` of the film's time.
         Records ``now`` in the film's history once (both :meth:`steps_left` and :meth:`stress_steps_left` ask)."""
+        self.record_film(now.time_s, now.steps_done, now.film_excess_K, now.film_wetted_share)
         if now.film_excess_K <= 0.0:
-            self._film, self._wetting = [], None
             return 0.0
-        if not self._film or self._film[-1][:2] != (now.time_s, now.steps_done):
-            self._film.append((now.time_s, now.steps_done, now.film_excess_K))
-        if self._wetting is None and now.film_wetted_share > 0.0:
-            self._wetting = (now.time_s, now.steps_done)
         if self._wetting is None or now.steps_done - self._wetting[1] < PACE_MIN_STEPS:
             return math.nan
         t0 = self._film[0][0]
@@ -320,7 +344,7 @@ class CoolingProgress:
 
     def _diffusional_steps(self, now: StepState) -> float:
         """The steps the pearlite/bainite limit still holds, once it has held: the fraction still to form
-        (``now.diffusional_to_come``, asked every :data:`FORECAST_EVERY_STEPS` steps and less what has formed since)
+        (``now.diffusional_to_come``, asked every :data:`FORECAST_EVERY_STEPS` steps and :data:`FORECAST_EVERY_S`, less what has formed since)
         over the fraction formed per step since the limit first held (inf until :data:`PACE_MIN_STEPS` such steps)."""
         if self._phase_change_start is None:
             self._phase_change_start = (now.steps_done, now.diffusional_fraction)
@@ -334,10 +358,12 @@ class CoolingProgress:
 
     def _to_come(self, now: StepState) -> float:
         """The mean pearlite + bainite still to form (0 for a steel that forms none): ``now.diffusional_to_come``,
-        asked every :data:`FORECAST_EVERY_STEPS` steps, less what has formed since it was asked."""
+        asked every :data:`FORECAST_EVERY_STEPS` steps and :data:`FORECAST_EVERY_S`, less what has formed since it was asked."""
         if now.diffusional_to_come is None:
             return 0.0
-        if self._forecast is None or now.steps_done - self._forecast[0] >= FORECAST_EVERY_STEPS:
+        if self._forecast is None or (now.steps_done - self._forecast[0] >= FORECAST_EVERY_STEPS
+                                      and not now.clock_s - self._forecast_clock_s < FORECAST_EVERY_S):
+            self._forecast_clock_s = now.clock_s
             self._forecast = (now.steps_done, now.diffusional_fraction, now.diffusional_to_come())
         _, formed_then, to_come = self._forecast
         return max(to_come - (now.diffusional_fraction - formed_then), 0.0)
@@ -383,17 +409,24 @@ class TimeLeft:
         self.shown_s: float | None = None
         self.history: list[tuple[float, float, float, float]] = []
 
-    def update(self, fraction: float, steps_done: int, steps_left: float, stress_steps_done: int = 0,
-               stress_steps_left: float = 0.0, stress_s: float = 0.0, thermal_s: float = 0.0) -> float | None:
-        """``stress_s`` and ``thermal_s``: the seconds so far in the stress steps and in the thermal steps, by the
-        run's timers (a multirate run's stress steps are fewer than its thermal steps, and each costs more): the
-        share of the stress steps in the clock's time over the window splits it into a time per thermal step and
-        one per stress step, each multiplying its own count of steps left."""
+    def record(self, steps_done: int, stress_steps_done: int = 0, stress_s: float = 0.0, thermal_s: float = 0.0
+               ) -> float:
+        """Record a step (the clock, the steps so far and the run's timers) for the price of the steps, without an
+        estimate (the steps between two updates of the bar); returns the clock."""
         now = self.clock()
         if self._count == len(self._seen):
             self._seen = np.concatenate([self._seen, np.empty_like(self._seen)])
         self._seen[self._count] = (now, steps_done, stress_steps_done, stress_s, thermal_s)
         self._count += 1
+        return now
+
+    def update(self, fraction: float, steps_done: int, steps_left: float, stress_steps_done: int = 0,
+               stress_steps_left: float = 0.0, stress_s: float = 0.0, thermal_s: float = 0.0) -> float | None:
+        """Record a step (:meth:`record`) and estimate. ``stress_s`` and ``thermal_s``: the seconds so far in the stress
+        steps and in the thermal steps, by the run's timers (a multirate run's stress steps are fewer than its thermal
+        steps, and each costs more): the share of the stress steps in the clock's time over the window splits it into
+        a time per thermal step and one per stress step, each multiplying its own count of steps left."""
+        now = self.record(steps_done, stress_steps_done, stress_s, thermal_s)
         elapsed, steps = now - self._seen[0, 0], steps_done - self._seen[0, 1]
         if fraction < self.warmup_fraction or elapsed <= 0.0 or steps < 1:
             return None
@@ -430,13 +463,17 @@ class TimeLeft:
 class RunProgress:
     """One tqdm bar on stderr for a whole run: the simulated seconds over all stages, the current stage (or the
     meshing, bath and output phases) in the description, the bar filled by the fraction of the work done
-    (:class:`CoolingProgress`, so it fills evenly) and the :class:`TimeLeft` estimate."""
+    (:class:`CoolingProgress`, so it fills evenly) and the :class:`TimeLeft` estimate, updated every ``update_every_s``
+    of ``clock`` (:meth:`due`; the steps in between are recorded, :meth:`record_step`)."""
 
     def __init__(self, label: str, total_s: float, enabled: bool = True,
-                 clock: Callable[[], float] = time.perf_counter) -> None:
+                 clock: Callable[[], float] = time.perf_counter, update_every_s: float = UPDATE_EVERY_S) -> None:
         self.label = label
         self.total_s = total_s
         self.time_left = TimeLeft(clock)
+        self.clock = clock
+        self.update_every_s = update_every_s
+        self._updated_at = -math.inf
         self.done = 0
         self.bar = tqdm(total=STEPS, desc=label, bar_format=BAR_FORMAT, file=sys.stderr, disable=not enabled,
                         leave=False, dynamic_ncols=True)
@@ -446,10 +483,20 @@ class RunProgress:
         self.bar.set_description_str(f"{self.label} {name}", refresh=True)
         log.info("%s: %s", self.label, name)
 
+    def due(self) -> bool:
+        """Whether ``update_every_s`` of the clock have passed since the last :meth:`update` (or there was none)."""
+        return self.clock() - self._updated_at >= self.update_every_s
+
+    def record_step(self, steps_done: int, stress_steps_done: int = 0, stress_s: float = 0.0,
+                    thermal_s: float = 0.0) -> None:
+        """A step between two updates: recorded for the price of the steps (:meth:`TimeLeft.record`)."""
+        self.time_left.record(steps_done, stress_steps_done, stress_s, thermal_s)
+
     def update(self, time_s: float, fraction: float, steps_done: int, steps_left: float, stress_steps_done: int = 0,
                stress_steps_left: float = 0.0, stress_s: float = 0.0, thermal_s: float = 0.0) -> None:
         left = self.time_left.update(fraction, steps_done, steps_left, stress_steps_done, stress_steps_left,
                                      stress_s, thermal_s)
+        self._updated_at = self.clock()
         done = min(int(fraction * STEPS), STEPS - 1)      # full only when the stages are done
         text = f"{time_s:.1f} s simulated of up to {self.total_s:.0f} s"
         self.bar.set_postfix_str(text if left is None else f"{text}, ~{_clock(left)} left", refresh=False)

@@ -17,7 +17,8 @@ from quenchsim.progress.forecasts import diffusional_fraction_to_come, martensit
 
 class QuenchObserver:
     """The progress of one quench run on ``bar``: ``stage(...)`` when a stage starts, ``step(...)`` after each
-    committed step."""
+    committed step (an update of the estimate when the bar is due, :meth:`RunProgress.due`; otherwise a record of the
+    step's clock and of the vapour film, :meth:`RunProgress.record_step`, :meth:`CoolingProgress.record_film`)."""
 
     def __init__(self, run: Any, bar: RunProgress) -> None:
         case, ctl = run.case, run.case.time
@@ -25,6 +26,7 @@ class QuenchObserver:
         self.estimate = CoolingProgress(run.T_aust, case.air.until_max_C, case.air.temperature_C, ctl.dt_max_s,
                                         ctl.max_dT_K, ctl.max_dX, ctl.growth, ctl.mechanics_max_dT_K,
                                         ctl.mechanics_max_dX)
+        self.limited_by_phase_change = False   # the phase-fraction limit held at a step since the last update
 
     def stage(self, stage: Any, later: list[Any], htc: Any, stage_htc: Callable[[str], Any], t_end: float) -> None:
         """A stage starts (or resumes) with boundary ``htc`` until ``t_end``; ``later``: the stages after it, whose
@@ -40,15 +42,22 @@ class QuenchObserver:
         ``max_dT_K``; the temperatures before it ``T_qp_before``)."""
         run, ctl = self.run, self.run.case.time
         thermal, counts, kin = run.thermal, run.counts, run.kin
+        self.limited_by_phase_change |= dX / ctl.max_dX > max_dT_K / ctl.max_dT_K
+        stress_s, solve_s = run.timings.get("mechanics_s", 0.0), run.timings.get("thermal_metallurgy_s", 0.0)
         collapse_C, filmed = self.collapse_C, np.isfinite(self.collapse_C)
         T_surface_C = run.fe.at_facet_qp(thermal.T).reshape(-1)
+        film_excess_K = float(np.max(T_surface_C - collapse_C))
+        wetted = float(np.mean(T_surface_C[filmed] < collapse_C[filmed])) if filmed.any() else 0.0
+        if not self.bar.due():
+            self.bar.record_step(counts["steps"], counts.get("stress_steps", 0), stress_s, solve_s)
+            self.estimate.record_film(thermal.time_s, counts["steps"], film_excess_K, wetted)
+            return
         fractions = thermal.fractions() if kin is not None else {}
         now = StepState(counts["steps"], thermal.time_s, thermal.T, run.position["dt_s"],
                         self.t_end - thermal.time_s, math.isfinite(self.stage_now.until_max_C), self.later,
-                        float(np.mean(T_surface_C)), float(np.max(T_surface_C - collapse_C)),
-                        float(np.mean(T_surface_C[filmed] < collapse_C[filmed])) if filmed.any() else 0.0,
+                        float(np.mean(T_surface_C)), film_excess_K, wetted,
                         float(np.mean(fractions.get("austenite", 0.0))),
-                        dX / ctl.max_dX > max_dT_K / ctl.max_dT_K,
+                        self.limited_by_phase_change,
                         0.0 if kin is None else metallurgy.incubation_share(thermal.phase_state, kin, thermal.T_qp),
                         float(np.mean(sum(fractions.get(r, 0.0) for r in kin.reactions))) if kin is not None else 0.0,
                         None if kin is None else self._diffusional_to_come(T_qp_before, dt_s),
@@ -56,9 +65,9 @@ class QuenchObserver:
                         martensite_fraction=float(np.mean(fractions.get("martensite", 0.0))),
                         martensite_limit_steps=None if kin is None else self._martensite_limit_steps(
                             T_qp_before, dt_s, self.bath_C),
-                        stress_steps_done=counts.get("stress_steps", 0))
+                        stress_steps_done=counts.get("stress_steps", 0), clock_s=self.bar.clock())
+        self.limited_by_phase_change = False
         steps_left = self.estimate.steps_left(now)
-        stress_s, solve_s = run.timings.get("mechanics_s", 0.0), run.timings.get("thermal_metallurgy_s", 0.0)
         self.bar.update(thermal.time_s, self.estimate.fraction(thermal.T), counts["steps"], steps_left,
                         counts.get("stress_steps", 0), self.estimate.stress_steps_left(now, steps_left),
                         stress_s, solve_s)
