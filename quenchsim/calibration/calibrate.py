@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from quenchsim.calibration.conflicts import conflicts, pulls
+from quenchsim.calibration.conflicts import conflicts, cosatisfaction, meets, pulls
 from quenchsim.calibration.data import Observable, Term, default_group, read_term
 from quenchsim.calibration.design import (latin_hypercube, morris_indices, morris_points, sobol_indices,
                                           spread_subset)
@@ -326,6 +326,7 @@ def _calibrate(spec: CalibrationSpec, out: Path, workers: int, progress: bool, m
         "pulls": pulls(lk, spec.measurements, spec.inputs, walkers=sampler["walkers"],
                        steps=max(300, sampler["steps"] // 2), seed=spec.design["seed"]),
         "conflicts": conflicts(lk, spec.measurements, len(spec.inputs), seed=spec.design["seed"]),
+        "full_chain_cosatisfaction": _cosatisfaction(spec, design),
         "predictions": prediction_bands(spec, surrogate, posterior),
         "calibrated_files": calibrated, "confirm": confirmed,
         "calibrated_run": _calibrated_rows(spec, confirmed),
@@ -338,6 +339,19 @@ def _calibrate(spec: CalibrationSpec, out: Path, workers: int, progress: bool, m
     return result
 
 
+def _cosatisfaction(spec: CalibrationSpec, design: Design) -> dict[str, Any]:
+    """Which data the design's full-chain runs meet together (:func:`~quenchsim.calibration.conflicts.cosatisfaction`)."""
+    runs, factors = [], []
+    for role, block in design.points.items():
+        for i, u in enumerate(block):
+            runs.append({o.label: (None if not np.isfinite(design.values[role][o.label][i])
+                                   else float(design.values[role][o.label][i])) for o in spec.observables})
+            factors.append([inp.factor(x) for inp, x in zip(spec.inputs, u)])
+    out = cosatisfaction(spec.measurements, runs, factors)
+    out["inputs"] = [inp.path for inp in spec.inputs]
+    return out
+
+
 def _calibrated_rows(spec: CalibrationSpec, confirmed: dict[str, Any]) -> dict[str, dict[str, Any]]:
     """Per measured observable: the full chain at the posterior median (the finest fidelity run) against the datum."""
     best = confirmed.get("confirm", confirmed["design"])
@@ -346,16 +360,8 @@ def _calibrated_rows(spec: CalibrationSpec, confirmed: dict[str, Any]) -> dict[s
         value = best["calibrated"].get(o.label)
         rows[o.label] = {"full_chain": value, "measured": o.value, "lower": o.lower, "upper": o.upper,
                          "uncertainty": o.sd, "target": o.target_text(),
-                         "met": None if value is None else _meets(o, value)}
+                         "met": None if value is None else meets(o, value)}
     return rows
-
-
-def _meets(o: Observable, value: float) -> bool:
-    """Whether a value meets an observable's datum within two of its standard deviations."""
-    if o.value is not None:
-        return abs(value - o.value) <= 2.0 * o.sd
-    return ((o.lower is None or value >= o.lower - 2.0 * o.sd)
-            and (o.upper is None or value <= o.upper + 2.0 * o.sd))
 
 
 def _write_design(spec: CalibrationSpec, design: Design, path: Path) -> None:

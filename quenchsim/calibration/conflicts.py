@@ -1,5 +1,9 @@
 """Which data pull which inputs where, and which data no input set meets together.
 
+* Co-satisfaction on the full chain (no surrogate): of the design's runs, how many meet each datum, each pair of
+  data, and the largest set of data one run meets -- evidence that does not depend on the surrogate's error, as
+  dense as the design (a pair no run meets together is a conflict unless the runs missed the region where both
+  hold; the refinement waves put runs where the posterior is).
 * Pulls: the posterior of the inputs given each datum alone (no discrepancy), on the same surrogate: where each
   datum would put each input, and how much it narrows it.
 * Conflicts: the parameter goodness-of-fit statistic of Maltoni & Schwetz (Phys. Rev. D 68 (2003) 033020),
@@ -20,7 +24,7 @@ from typing import Any
 import numpy as np
 from scipy.optimize import minimize
 
-from quenchsim.calibration.data import Measurement
+from quenchsim.calibration.data import Measurement, Observable
 from quenchsim.calibration.inputs import FreeInput
 from quenchsim.calibration.likelihood import Likelihood
 from quenchsim.calibration.posterior import identifiability, sample_posterior
@@ -95,3 +99,36 @@ def conflicts(likelihood: Likelihood, data: Sequence[Measurement], d: int, seed:
         rows.append({"a": a.label, "b": b.label, "chi2_a": alone[a.label], "chi2_b": alone[b.label], "chi2_both": both,
                      "chi2_pg": pg, "conflict": pg > CONFLICT_CHI2})
     return rows
+
+
+MET_SIGMAS = 2.0
+"""A run meets a measured value within this many of its standard deviations, a bound not violated by more."""
+
+
+def meets(o: Observable, value: float | None, sigmas: float = MET_SIGMAS) -> bool:
+    """Whether a run's value of an observable meets its datum (within ``sigmas`` standard deviations)."""
+    if value is None or not np.isfinite(value):
+        return False
+    if o.value is not None:
+        return abs(value - o.value) <= sigmas * o.sd
+    return ((o.lower is None or value >= o.lower - sigmas * o.sd)
+            and (o.upper is None or value <= o.upper + sigmas * o.sd))
+
+
+def cosatisfaction(data: Sequence[Measurement], runs: Sequence[dict[str, float | None]],
+                   factors: Sequence[Sequence[float]], best: int = 5) -> dict[str, Any]:
+    """Of the full-chain runs (each a dict of observable values, with its input ``factors``): how many meet each
+    datum (every observable of it), each pair of data together, all of them; the runs that meet the most data
+    and what they miss."""
+    met = np.array([[all(meets(o, run.get(o.label)) for o in m.observables) for m in data] for run in runs], dtype=bool)
+    labels = [m.label for m in data]
+    pairs = []
+    for a, b in combinations(range(len(data)), 2):
+        pairs.append({"a": labels[a], "b": labels[b], "runs_a": int(met[:, a].sum()), "runs_b": int(met[:, b].sum()),
+                      "runs_both": int((met[:, a] & met[:, b]).sum())})
+    order = np.argsort(-met.sum(axis=1), kind="stable")[:best]
+    return {"runs": len(runs), "per_datum": dict(zip(labels, met.sum(axis=0).tolist())),
+            "all": int(met.all(axis=1).sum()), "most": int(met.sum(axis=1).max()) if len(runs) else 0,
+            "pairs": pairs,
+            "best_runs": [{"met": int(met[i].sum()), "missed": [lab for lab, ok in zip(labels, met[i]) if not ok],
+                           "factors": list(map(float, factors[i]))} for i in order]}

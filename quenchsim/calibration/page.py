@@ -107,6 +107,30 @@ def conflict_rows(result: dict[str, Any]) -> list[str]:
     return rows
 
 
+def cosatisfaction_rows(result: dict[str, Any]) -> list[str]:
+    """Which data the full-chain runs of the design meet together (no surrogate)."""
+    c = result.get("full_chain_cosatisfaction")
+    if not c:
+        return []
+    data = list(c["per_datum"])
+    short = {lab: f"d{i + 1}" for i, lab in enumerate(data)}
+    both = {(p["a"], p["b"]): p["runs_both"] for p in c["pairs"]}
+    rows = [f"Of the design's {c['runs']} full-chain runs (no surrogate), how many meet each datum (every observable "
+            f"within 2 sd), each pair together (below the diagonal), and all: **{c['all']}**; the most data one run "
+            f"meets: {c['most']} of {len(data)}.", "",
+            "| datum | runs meeting it | " + " | ".join(short[d] for d in data) + " |",
+            "|---|---|" + "---|" * len(data)]
+    for i, a in enumerate(data):
+        cells = [str(both.get((b, a), both.get((a, b), ""))) if j < i else ("-" if j == i else "") for j, b in enumerate(data)]
+        rows.append(f"| {short[a]}: {a} | {c['per_datum'][a]} | " + " | ".join(cells) + " |")
+    rows += ["", "The runs that meet the most data:", "", "| data met | missed | input factors |", "|---|---|---|"]
+    for r in c["best_runs"]:
+        rows.append(f"| {r['met']} | {', '.join(short[m] for m in r['missed']) or '-'} | "
+                    + ", ".join(f"{f:.3g}" for f in r["factors"]) + " |")
+    rows += ["", "Input order: " + ", ".join(f"`{_short(p)}`" for p in c["inputs"]) + "."]
+    return rows
+
+
 def calibration_page(spec: CalibrationSpec, result: dict[str, Any]) -> str:
     runs = result["runs"]
     s = result["sampler"]
@@ -120,7 +144,8 @@ def calibration_page(spec: CalibrationSpec, result: dict[str, Any]) -> str:
           "## Each datum: posterior prediction and full chain at the posterior median", "", *check_rows(result), "",
           "## Cheap against full fidelity", "", *fidelity_rows(result), "",
           "## Which data pull which inputs where", "", *pull_rows(result), "",
-          "## Which data conflict", "", *conflict_rows(result)]
+          "## Which data conflict", "", *conflict_rows(result), "",
+          "## Which data the full chain meets together", "", *cosatisfaction_rows(result)]
     if result["predictions"]:
         md += ["", "## Predictions (surrogate over the posterior, with the discrepancy of their group)", "",
                "| quantity | median | 5-95 % |", "|---|---|---|"]

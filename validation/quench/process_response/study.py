@@ -2,7 +2,10 @@
 report's range from the ring's base condition (ring A condition 1, ring B condition 4), full chain, every summary
 quantity (hardness depths, core HRC, ID / OD / width change, shape, hoop stress) and the distortion budget of each
 run, so a reader sees what each knob does and through which part of the budget (free strain, thermal plasticity,
-transformation plasticity). The report's conditions themselves are the ring pages' runs (shared cache)."""
+transformation plasticity). The report's conditions themselves are the ring pages' runs (shared cache).
+
+The same runs again with the inputs calibrated on every measurement of ring A (calibration/ring_a: every input at its
+posterior median, the two-ID-row layout), beside the nominal ones: what each jet does to the calibrated model."""
 
 from __future__ import annotations
 
@@ -49,11 +52,14 @@ def _points(ring: str) -> list[tuple[str, float, float]]:
     return pts
 
 
-def _summary(ring: str, label: str, id_mm_s: float, od_mm_s: float, workdir: Path) -> dict[str, Any]:
+def _summary(ring: str, label: str, id_mm_s: float, od_mm_s: float, workdir: Path,
+             calibrated: dict[str, str] | None = None) -> dict[str, Any]:
+    """The run of one point (``calibrated``: the overrides of the calibrated data files, else nominal inputs)."""
     case_path, cond, *_ = RINGS[ring]
-    case = load_case(case_path, cond, {ID_KEY: id_mm_s, OD_KEY: od_mm_s})
+    case = load_case(case_path, cond, {ID_KEY: id_mm_s, OD_KEY: od_mm_s, **(calibrated or {})})
     tag = f"{case_path.stem}_{cond}" if label == "base" else f"{case_path.stem}_id{id_mm_s:g}_od{od_mm_s:g}"
-    return load_run(cached_run(case, study_module("quench/ring_a").run_dirs(workdir) / tag)).summary
+    folder = study_module("quench/ring_a").run_dirs(workdir) / (f"calibrated_{tag}" if calibrated else tag)
+    return load_run(cached_run(case, folder)).summary
 
 
 def _row(s: dict[str, Any]) -> dict[str, Any]:
@@ -65,9 +71,18 @@ def _row(s: dict[str, Any]) -> dict[str, Any]:
 
 def run(workdir: Path) -> dict[str, Any]:
     workdir = Path(workdir)
+    metrics = _responses(workdir, None)
+    calibrated = study_module("calibration/ring_a").calibrated_overrides(workdir)
+    metrics["calibrated"] = _responses(workdir, calibrated)
+    metrics["calibrated"]["overrides"] = {k: Path(v).name for k, v in calibrated.items()}
+    return metrics
+
+
+def _responses(workdir: Path, calibrated: dict[str, str] | None) -> dict[str, Any]:
+    """Every ring's runs, each jet's effect and the report's trends, nominal or with the calibrated data files."""
     metrics: dict[str, Any] = {"rings": {}}
     for ring in RINGS:
-        runs = {label: {"id_mm_s": i, "od_mm_s": o, **_row(_summary(ring, label, i, o, workdir))}
+        runs = {label: {"id_mm_s": i, "od_mm_s": o, **_row(_summary(ring, label, i, o, workdir, calibrated))}
                 for label, i, o in _points(ring)}
         metrics["rings"][ring] = runs
         effects: dict[str, dict[str, float]] = {}
@@ -79,7 +94,7 @@ def run(workdir: Path) -> dict[str, Any]:
             effects[jet]["budget_id"] = {p: hi["budget"][p]["id"] - lo["budget"][p]["id"] for p in BUDGET_PARTS}
             effects[jet]["budget_od"] = {p: hi["budget"][p]["od"] - lo["budget"][p]["od"] for p in BUDGET_PARTS}
         metrics[f"effects_{ring}"] = effects
-        _plot(ring, runs, workdir / f"process_response_{ring}.png")
+        _plot(ring, runs, workdir / f"process_response_{ring}{'_calibrated' if calibrated else ''}.png")
     a = metrics["rings"]["A"]
     # the report's trends for ring A, one jet at a time (the report moved both together: ring_a's page)
     metrics["A_od_fast_minus_slow_depth_od_mm"] = a["OD 10680"]["HRC58 depth OD (mm)"] - a["OD 1780"]["HRC58 depth OD (mm)"]
@@ -113,32 +128,53 @@ def _plot(ring: str, runs: dict[str, Any], path: Path) -> None:
     plt.close(fig)
 
 
+def _tables(variant: dict[str, Any], ring: str, png: str) -> list[str]:
+    """One variant's runs, budgets and jet effects of a ring."""
+    runs = variant["rings"][ring]
+    labels = list(runs)
+    md = ["| quantity | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
+    for name, _, fmt in QUANTITIES:
+        md.append(f"| {name} | " + " | ".join(fmt.format(runs[lab][name]) for lab in labels) + " |")
+    md += ["", "Distortion budget of the ID / raceway change (mm): how each run's change splits into the free strain "
+           "of the final phases, thermal plasticity and transformation plasticity (summary.json distortion_budget_mm).",
+           "", "| part | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
+    for p in BUDGET_PARTS:
+        md.append(f"| {p.replace('_', ' ')} | " + " | ".join(f"{runs[lab]['budget'][p]['id']:+.3f}" for lab in labels) + " |")
+    md += ["", "| part (OD) | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
+    for p in BUDGET_PARTS:
+        md.append(f"| {p.replace('_', ' ')} | " + " | ".join(f"{runs[lab]['budget'][p]['od']:+.3f}" for lab in labels) + " |")
+    return md + ["", f"![ring {ring} response]({png})", ""]
+
+
+def _effects(metrics: dict[str, Any], ring: str) -> list[str]:
+    """What each jet does over its range, nominal and calibrated side by side."""
+    nom, cal = metrics[f"effects_{ring}"], metrics["calibrated"][f"effects_{ring}"]
+    ids, ods = ("-".join(f"{v:g}" for v in nom[j]["range_mm_s"]) for j in ("ID", "OD"))
+    md = ["What each jet does over its range (slow -> fast, the other jet at base), with the nominal and with the "
+          "calibrated inputs:", "",
+          f"| quantity | ID jets {ids} mm/s, nominal | calibrated | OD jets {ods} mm/s, nominal | calibrated |",
+          "|---|---|---|---|---|"]
+    for name, _, fmt in QUANTITIES:
+        md.append(f"| {name} | {fmt.format(nom['ID'][name])} | {fmt.format(cal['ID'][name])} | "
+                  f"{fmt.format(nom['OD'][name])} | {fmt.format(cal['OD'][name])} |")
+    for dim in ("id", "od"):
+        parts = ", ".join(p.replace("_", " ") for p in BUDGET_PARTS)
+        cells = [" / ".join(f"{e[jet][f'budget_{dim}'][p]:+.3f}" for p in BUDGET_PARTS)
+                 for jet in ("ID", "OD") for e in (nom, cal)]
+        md.append(f"| {dim.upper()} change through: {parts} | " + " | ".join(cells) + " |")
+    return md + [""]
+
+
 def page(metrics: dict[str, Any]) -> str:
+    cal = metrics["calibrated"]
     md = ["Each ring starts from its base condition of the report (ring A condition 1: ID 1000 / OD 5340 mm/s; ring B "
           "condition 4: ID 540 / OD 3280 mm/s) and one jet is moved over the report's range with the other held. "
-          "Full chain (thermal, metallurgy, stress), default mesh and steps, nominal inputs (no calibration).", ""]
-    for ring, runs in metrics["rings"].items():
-        labels = list(runs)
-        md += [f"## Ring {ring}", "", "| quantity | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
-        for name, _, fmt in QUANTITIES:
-            md.append(f"| {name} | " + " | ".join(fmt.format(runs[lab][name]) for lab in labels) + " |")
-        md += ["", "Distortion budget of the ID / raceway change (mm): how each run's change splits into the free strain "
-               "of the final phases, thermal plasticity and transformation plasticity (summary.json distortion_budget_mm).",
-               "", "| part | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
-        for p in BUDGET_PARTS:
-            md.append(f"| {p.replace('_', ' ')} | " + " | ".join(f"{runs[lab]['budget'][p]['id']:+.3f}" for lab in labels) + " |")
-        md += ["", "| part (OD) | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
-        for p in BUDGET_PARTS:
-            md.append(f"| {p.replace('_', ' ')} | " + " | ".join(f"{runs[lab]['budget'][p]['od']:+.3f}" for lab in labels) + " |")
-        eff = metrics[f"effects_{ring}"]
-        md += ["", "What each jet does over its range (slow -> fast, the other jet at base):", "",
-               "| quantity | ID jets " + "-".join(f"{v:g}" for v in eff["ID"]["range_mm_s"]) + " mm/s | OD jets "
-               + "-".join(f"{v:g}" for v in eff["OD"]["range_mm_s"]) + " mm/s |", "|---|---|---|"]
-        for name, _, fmt in QUANTITIES:
-            md.append(f"| {name} | {fmt.format(eff['ID'][name])} | {fmt.format(eff['OD'][name])} |")
-        for dim in ("id", "od"):
-            md.append(f"| {dim.upper()} change through: " + ", ".join(p.replace("_", " ") for p in BUDGET_PARTS) + " | "
-                      + " / ".join(f"{eff['ID'][f'budget_{dim}'][p]:+.3f}" for p in BUDGET_PARTS) + " | "
-                      + " / ".join(f"{eff['OD'][f'budget_{dim}'][p]:+.3f}" for p in BUDGET_PARTS) + " |")
-        md += ["", f"![ring {ring} response](process_response_{ring}.png)", ""]
+          "Full chain (thermal, metallurgy, stress), default mesh and steps, twice: with the nominal inputs, and with "
+          "the inputs calibrated on every measurement of ring A together (reports/calibration_ring_a.md: every "
+          "calibrated input at its posterior median, from the data files "
+          + ", ".join(f"`{v}`" for v in cal["overrides"].values()) + ", the two-ID-row layout among them).", ""]
+    for ring in metrics["rings"]:
+        md += [f"## Ring {ring}", "", *_effects(metrics, ring), "### Nominal inputs", "",
+               *_tables(metrics, ring, f"process_response_{ring}.png"), "### Calibrated inputs", "",
+               *_tables(cal, ring, f"process_response_{ring}_calibrated.png")]
     return "\n".join(md)
