@@ -39,14 +39,13 @@ BANDED = {"raceway": "dimensions_mm.change.id", "od": "dimensions_mm.change.od",
 """What is predicted for ring B (summary.json keys): size, crown, taper, hardness."""
 BAND_LIMIT_MM = 1.2
 """A raceway-change band wider than this (5-95 %) cannot tell ring B's settings apart (issue 44)."""
-SETS = {"thermocouple order + bore depth": ("order", "depth"),
-        "ID + OD (the measured size and shape)": ("dimensions_mm.change.id", "dimensions_mm.change.od"),
-        "order + depth + ID + OD (issue 44's set)": ("order", "depth", "1:dimensions_mm.change.id",
-                                                     "1:dimensions_mm.change.od"),
-        "order + depth + pearlitic centre": ("order", "depth", "pearlite"),
-        "all data": ()}
-"""Sets of ring A's data whose joint co-satisfaction by the design's full-chain runs the page states (by a piece of
-each datum's label; empty: every datum)."""
+_ORDER, _DEPTH = "ring_a/1:order P5 < P4 < P3 < P2 (t_to_500C_s)", "ring_a/1:HRC58 depth bore 5 +- 1 mm"
+_ID, _OD, _P1 = "ring_a/1:dimensions_mm.change.id", "ring_a/1:dimensions_mm.change.od", "ring_a/1:probes.P1.phases.pearlite"
+SETS = {"thermocouple order + bore depth": (_ORDER, _DEPTH), "ID + OD (the measured size and shape)": (_ID, _OD),
+        "order + depth + ID + OD (issue 44's set)": (_ORDER, _DEPTH, _ID, _OD),
+        "order + depth + pearlitic centre": (_ORDER, _DEPTH, _P1), "all data": ()}
+"""Sets of ring A's data (by their labels in ring_a.cal.toml; empty: every datum) whose joint co-satisfaction by the
+design's full-chain runs the page states."""
 UPDATE_WIDTH = 0.5
 """An input's shipped value is updated only when the data pin it (posterior 90 % width below this share of its
 prior's) and its posterior 90 % interval excludes the shipped value."""
@@ -84,7 +83,8 @@ def _set_counts(spec: Any, out: Path) -> tuple[dict[str, int], list[float]]:
     points = json.loads((out / "design.json").read_text())["points"]
     counts, size_and_shape = {}, []
     for name, pieces in SETS.items():
-        data = [m for m in spec.measurements if not pieces or any(piece in m.label for piece in pieces)]
+        data = [m for m in spec.measurements if not pieces or m.label in pieces]
+        assert not pieces or len(data) == len(pieces), f"unknown data in {pieces}"
         ok = [p for p in points if all(meets(o, p.get(o.label)) for m in data for o in m.observables)]
         counts[name] = len(ok)
         if name.startswith("ID + OD"):
