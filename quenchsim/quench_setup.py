@@ -17,6 +17,7 @@ from quenchsim.errors import InputError
 from quenchsim.geometry import BoundaryPoints, SectionMesh, boundary_points, mesh_profile
 from quenchsim.geometry.profile import MM, Profile
 from quenchsim.fem import INTORDER
+from quenchsim.inputs.declare import to_table
 from quenchsim.materials import load_material, thermal_properties, transforms
 from quenchsim.results.final_part import FinalPart
 from quenchsim.results.postprocess import NodalProjection
@@ -51,11 +52,14 @@ def build_section(case: Case, material: dict[str, Any], msh_path: Path) -> Secti
         return Section(section, section.mesh, case.profile, 1.0, None)
     solve_stress = case.mechanics.enabled
     # a thermal-only run needs the free strains (for the hot section) but no flow or TRIP data
-    options = dict(case.mechanics.solver_options) if solve_stress else {"plasticity": False, "trip": False}
+    m = case.mechanics
+    options = ({"plasticity": m.plasticity, "trip": m.trip, "newton_rtol": m.newton_rtol,
+                "max_newton_iterations": m.max_newton_iterations} if solve_stress
+               else {"plasticity": False, "trip": False})
     mech_model = mechanics.load_mechanics(material, {**options, "austenitizing_T_C": T_aust})
     scale = mechanics.austenitized_scale(mech_model)
     mesh = section.mesh
-    if case.reference_state == "annealed":
+    if case.geometry.reference_state == "annealed":
         profile_before, profile, case_to_hot = case.profile, case.profile.scaled(scale), scale
         hot, before_mesh = skfem.MeshTri(mesh.p * scale, mesh.t), mesh
     else:
@@ -90,8 +94,9 @@ def stages(case: Case) -> list[Stage]:
     plan = [Stage("transfer", case.transfer.time_s), Stage("quench", case.quench.time_s),
             Stage("air", case.air.time_s, case.air.until_max_C)]
     if case.temper is not None:
-        plan += [Stage("temper", case.temper.time_s),
-                 Stage("temper_cool", case.temper.cool_time_s, case.temper.cool_until_max_C)]
+        cool_until_max_C = case.temper.cool_until_max_C
+        assert cool_until_max_C is not None   # the case sets it (default: the air stage's, Case.check)
+        plan += [Stage("temper", case.temper.time_s), Stage("temper_cool", case.temper.cool_time_s, cool_until_max_C)]
     return plan
 
 
@@ -114,25 +119,25 @@ def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
         temper = case.temper
         assert temper is not None   # a temper stage exists only with a [temper] table
         if temper.htc_model == "table":
-            assert temper.htc_table is not None   # the "table" model carries its tables (case.parse._temper)
-            return parse_htc_table(dict(temper.htc_table), points.segment, "temper.htc_table")
+            assert temper.htc_table is not None   # the "table" model carries its tables (Temper.check)
+            return parse_htc_table(to_table(temper.htc_table), points.segment, "temper.htc_table")
         return HeatingHTC(SurfaceTemperatureHTC(bath.air_htc(points, temper.temperature_C, temper.emissivity)))
     if stage == "quench":
-        # the quench stage carries its htc_table with the "table" model, its bath otherwise (case.parse._quench)
+        # the quench stage carries its htc_table with the "table" model, the case its bath otherwise (Quench.check)
         oil: TableHTC | SurfaceTemperatureHTC
         if case.quench.htc_model == "table":
             assert case.quench.htc_table is not None
-            oil = parse_htc_table(dict(case.quench.htc_table), points.segment, "quench.htc_table")
+            oil = parse_htc_table(to_table(case.quench.htc_table), points.segment, "quench.htc_table")
         else:
-            assert case.quench.bath is not None
-            oil = SurfaceTemperatureHTC(bath.boundary_htc(case.quench.bath, points))
+            assert case.bath is not None
+            oil = SurfaceTemperatureHTC(bath.boundary_htc(case.bath, points))
         if case.quench.immersion_speed_mm_s is None:
             return oil
         return ImmersionHTC(oil, stage_htc(case, "transfer", points), points.z_m, points.extent.z_min_m,
                             case.quench.immersion_speed_mm_s * MM, case.transfer.time_s)
     if case.air.htc_model == "table":
-        assert case.air.htc_table is not None   # the "table" model carries its tables (case.parse._air)
-        return parse_htc_table(dict(case.air.htc_table), points.segment, "air.htc_table")
+        assert case.air.htc_table is not None   # the "table" model carries its tables (Air.check)
+        return parse_htc_table(to_table(case.air.htc_table), points.segment, "air.htc_table")
     return SurfaceTemperatureHTC(bath.air_htc(points, case.air.temperature_C, case.air.emissivity))
 
 

@@ -43,7 +43,6 @@ import json
 import logging
 import re
 import time
-import tomllib
 import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -53,6 +52,7 @@ from tqdm import tqdm
 
 from quenchsim.case import case_from_dict
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.reader import read_toml, reading
 from quenchsim.fingerprint import run_fingerprint
 from quenchsim.results import RunWriter, files, read_summary
 
@@ -130,11 +130,7 @@ def parse_sweep(raw: dict[str, Any], base_dir: Path, name: str = "sweep") -> Swe
             "required: the base case file (relative to the sweep file)")
     case_path = (base_dir / head["case"]).resolve()
     require(case_path.is_file(), "sweep.case", head["case"], f"file not found ({case_path})")
-    with case_path.open("rb") as fh:
-        try:
-            raw_case = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError("sweep.case", head["case"], f"is not valid TOML ({exc})") from None
+    raw_case = read_toml(case_path, "sweep.case")
     condition = head.get("condition")
     return make_sweep(raw_case, grid=raw.get("grid", {}), zipped=raw.get("zip", {}), fixed=raw.get("set", {}),
                       condition=None if condition is None else str(condition), case_path=case_path,
@@ -179,13 +175,9 @@ def make_sweep(raw_case: dict[str, Any], grid: dict[str, Any] | None = None, zip
 def load_sweep(path: str | Path) -> SweepSpec:
     """Read a sweep file (see the module docstring)."""
     path = Path(path)
-    require(path.is_file(), "sweep", str(path), "file not found")
-    with path.open("rb") as fh:
-        try:
-            raw = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError("sweep", str(path), f"is not valid TOML ({exc})") from None
-    return parse_sweep(raw, path.parent, name=path.stem)
+    raw = read_toml(path, "sweep")
+    with reading(path):
+        return parse_sweep(raw, path.parent, name=path.stem)
 
 
 def _format_value(value: Any) -> str:

@@ -30,7 +30,6 @@ import math
 import re
 import shutil
 import time
-import tomllib
 import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -39,6 +38,7 @@ from collections.abc import Callable
 from typing import Any
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.reader import parse_toml, read_toml
 from quenchsim.fingerprint import code_fingerprint
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -112,10 +112,7 @@ def load_targets(path: Path, study: str = "") -> list[Target]:
     one form (value + tolerance | value + rel_tolerance | min and/or max), except ``status = "reference"``
     (a value without tolerance); an open target says why."""
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text())
-    except (OSError, tomllib.TOMLDecodeError) as exc:
-        raise InputError(str(path), "", f"cannot read targets: {exc}") from exc
+    data = read_toml(path, "targets")
     allowed = {f.name for f in Target.__dataclass_fields__.values()} - {"study"}
     unknown_top = set(data) - {"targets"}
     if unknown_top:
@@ -450,7 +447,7 @@ def cached_run(case: Any, run_dir: Path) -> Path:
     done, stamp = run_dir / files.SUMMARY_JSON, run_dir / "code_fingerprint.txt"
     fingerprint = code_fingerprint()
     if done.is_file() and (run_dir / files.CASE_TOML).is_file() and stamp.is_file():
-        same = tomllib.loads((run_dir / files.CASE_TOML).read_text()) == tomllib.loads(_toml(case))
+        same = read_toml(run_dir / files.CASE_TOML) == parse_toml(_toml(case), "case")
         if same and stamp.read_text() == fingerprint and json.loads(done.read_text()).get("status") == "ok":
             return run_dir
     stamp.unlink(missing_ok=True)

@@ -136,7 +136,7 @@ def test_a_truncated_case_file_is_named_as_such_not_as_a_missing_condition(tmp_p
 def test_a_misspelt_table_is_named_with_the_table_it_was_meant_to_be(tmp_path, capsys):
     case = _case_with(tmp_path, "[process]", "[proces]")
     err = _one_line_error(capsys, ["run", str(case), "--condition", "1", "--out", str(tmp_path / "run")])
-    assert err.startswith("quenchsim: error: proces = ") and "did you mean process?" in err
+    assert err.startswith(f"quenchsim: error: {case}: proces = ") and "did you mean process?" in err
 
 
 def test_a_probe_curve_in_kelvin_is_refused_with_a_hint_to_give_degrees_c(tmp_path, capsys, monkeypatch):

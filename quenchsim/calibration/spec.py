@@ -46,7 +46,6 @@ Every error is one :class:`~quenchsim.errors.InputError` naming the field, raise
 
 from __future__ import annotations
 
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -57,6 +56,7 @@ from quenchsim.calibration.data import (Measurement, Observable, Prediction, che
 from quenchsim.calibration.inputs import FreeInput, free_input, used_by
 from quenchsim.case import Case, load_case
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.reader import read_toml, reading
 
 DESIGN_DEFAULTS = {"screening_trajectories": 4, "training_runs": 16, "holdout_runs": 6, "seed": 19}
 SAMPLER_DEFAULTS = {"walkers": 32, "steps": 3000, "burn": 1000}
@@ -252,9 +252,6 @@ def parse_calibration(raw: Mapping[str, Any], base_dir: Path, path: Path | None 
 def load_calibration(path: str | Path) -> CalibrationSpec:
     """Read and check a calibration file (see the module docstring)."""
     path = Path(path)
-    require(path.is_file(), "calibration", str(path), "file not found")
-    try:
-        raw = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError("calibration", str(path), f"is not valid TOML ({exc})") from None
-    return parse_calibration(raw, path.parent, path)
+    raw = read_toml(path, "calibration")
+    with reading(path):
+        return parse_calibration(raw, path.parent, path)

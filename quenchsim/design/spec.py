@@ -50,7 +50,6 @@ import hashlib
 import json
 import math
 import re
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal, cast
@@ -58,6 +57,7 @@ from typing import Any, Literal, cast
 from quenchsim.case import Case, load_case
 from quenchsim.design.quantities import summary_quantities, unknown_quantity_hint
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.reader import read_toml, reading
 
 TABLES = ("study", "set", "variables", "objectives", "constraints", "fidelity", "confirm")
 STUDY_KEYS = ("case", "condition", "name", "trials", "startup", "seed", "sampler", "map")
@@ -387,10 +387,6 @@ def parse_study(raw: dict[str, Any], base_dir: Path, name: str = "study") -> Stu
 def load_study(path: str | Path) -> StudySpec:
     """Read and check a study file (see the module docstring)."""
     path = Path(path)
-    require(path.is_file(), "study", str(path), "file not found")
-    with path.open("rb") as fh:
-        try:
-            raw = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError("study", str(path), f"is not valid TOML ({exc})") from None
-    return parse_study(raw, path.parent, name=path.stem)
+    raw = read_toml(path, "study")
+    with reading(path):
+        return parse_study(raw, path.parent, name=path.stem)

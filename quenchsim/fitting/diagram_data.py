@@ -57,7 +57,6 @@ there, with a finish line more than 2 % (a finish is 99 % of the final amount: w
 
 from __future__ import annotations
 
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -66,6 +65,7 @@ from typing import Any
 import numpy as np
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.reader import read_toml
 from quenchsim.metallurgy.cct import FINISH_SHARE, MIN_FINISH_AMOUNT, START_FRACTION
 from quenchsim.metallurgy.hardness import hrc_to_hv
 from quenchsim.metallurgy.kinetics import C_CURVE_PARAMETERS, N_NODES, n_exponent_nodes
@@ -487,11 +487,7 @@ def load_diagram_data(path: str | Path) -> DiagramData:
     r = _Reader(path)
     if not path.is_file():
         raise InputError("data file", str(path), "does not exist")
-    with path.open("rb") as fh:
-        try:
-            raw = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise r.error("file", str(path), f"is not valid TOML ({exc})") from None
+    raw = read_toml(path, "data file")
     allowed = {"name", "material", "T_aust_C", "source", "cct", "ttt", "jominy", "fit", "data_from"}
     for key in raw:
         if key not in allowed:

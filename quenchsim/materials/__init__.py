@@ -25,13 +25,13 @@ from __future__ import annotations
 
 import contextlib
 import os
-import tomllib
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.reader import read_toml
 from quenchsim.materials.properties import PHASES, Property, parse_property
 from quenchsim.shipped import shipped_dir
 
@@ -126,12 +126,7 @@ def find_data_file(name: str, subdir: str | tuple[str, ...] = "", field: str = "
 
 def load_data_file(name: str, subdir: str | tuple[str, ...] = "", field: str = "material") -> dict[str, Any]:
     """The table of data file ``name`` (:func:`find_data_file`)."""
-    path = find_data_file(name, subdir, field)
-    with path.open("rb") as fh:
-        try:
-            return tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError(field, str(path), f"is not valid TOML ({exc})") from None
+    return read_toml(find_data_file(name, subdir, field), field)
 
 
 def load_material(name: str, field: str = "material") -> dict[str, Any]:
@@ -141,8 +136,7 @@ def load_material(name: str, field: str = "material") -> dict[str, Any]:
     data = load_data_file(str(path), field=field)
     mech_path = path.with_name(f"{path.stem}.mechanics.toml")
     if "mechanics" not in data and mech_path.is_file():
-        with mech_path.open("rb") as fh:
-            data["mechanics"] = tomllib.load(fh)
+        data["mechanics"] = read_toml(mech_path, f"{field} mechanics")
     if isinstance(data.get("tempering"), str):
         # a tempering data file, relative to the steel's file or to a data folder (a steel copied elsewhere keeps
         # the shipped data); not found, the steel has none (a [temper] is then refused, naming the file)

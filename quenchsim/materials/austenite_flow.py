@@ -19,12 +19,12 @@ log-linearly to the 750 C value.
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.reader import read_toml
 
 R_J_molK = 8.314462618
 """Molar gas constant, J/(mol K)."""
@@ -107,8 +107,7 @@ def austenite_yield_table(data: dict[str, Any]) -> YieldTable:
 
 def load_data(path: Path = DATA_FILE) -> dict[str, Any]:
     """The austenite flow data file (TOML) as a dict."""
-    with open(path, "rb") as f:
-        return tomllib.load(f)
+    return read_toml(path, "austenite flow data")
 
 
 def _main() -> None:  # pragma: no cover - prints the material row

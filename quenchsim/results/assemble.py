@@ -59,7 +59,7 @@ def handling_summary(case: Any) -> dict[str, Any]:
     liquid-property file, bath temperature, agitation and the part's support."""
     out: dict[str, Any] = {"transfer_time_s": case.transfer.time_s, "htc_model": case.quench.htc_model,
                            "immersion_speed_mm_s": case.quench.immersion_speed_mm_s}
-    bath = case.quench.bath
+    bath = case.bath
     if bath is not None:
         out.update(quenchant=case.get("quench.bath.quenchant"), liquid_properties=bath.liquid.name,
                    oil_temperature_C=bath.oil_temperature_C, agitation=bath.agitation,

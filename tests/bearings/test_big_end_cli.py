@@ -58,7 +58,7 @@ def test_bad_inputs_give_one_line_errors(tmp_path, capsys, old, new, field):
     path = _edited(tmp_path, old, new)
     with pytest.raises(InputError) as err:
         load_case(path)
-    assert str(err.value).startswith(field)
+    assert err.value.field == field and str(err.value).startswith(f"{path}: {field}")   # the file, then the key
     assert main(["bearings", "big-end", str(path), "--json"]) == 2
     captured = capsys.readouterr()
     assert captured.err.count("\n") == 1 and field in captured.err

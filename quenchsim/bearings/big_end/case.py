@@ -9,7 +9,6 @@ the load, speed and run length of the static/rig section (``load_kN``, ``speed_r
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -17,6 +16,7 @@ from typing import Any
 from quenchsim.bearings.big_end.engine import GasCycle
 from quenchsim.bearings.big_end.lubricant import available_oils
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.reader import read_toml, reading
 
 MODES = ("engine", "static", "rig")
 MAX_INTERFERENCE_FRACTION = 0.01  # preload (negative radial clearance) limited to 1 % of the roller
@@ -236,12 +236,13 @@ def _operations(data: dict[str, Any]) -> dict[str, Operation]:
 def load_case(path: str | Path) -> BigEndCase:
     """Read and validate a big-end case file; every length in SI (m) afterwards."""
     path = Path(path)
-    if not path.is_file():
-        raise InputError("INPUT", str(path), "case file not found")
-    try:
-        data = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError("INPUT", str(path), f"is not valid TOML ({exc})") from None
+    data = read_toml(path, "INPUT")
+    with reading(path):
+        return _case(data, path)
+
+
+def _case(data: dict[str, Any], path: Path) -> BigEndCase:
+    """The checked case of a big-end case file's table ``data``."""
     bearing = _bearing(_section(data, "bearing"))
     m = _section(data, "masses")
     roller, roller_inertia, cage, cage_inertia, outer_ring = (

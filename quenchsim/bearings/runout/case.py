@@ -21,13 +21,13 @@ from __future__ import annotations
 
 import math
 import pathlib
-import tomllib
 from dataclasses import dataclass
 from typing import Any
 
 from quenchsim.bearings.runout.contact_angle import free_contact_angle_rad, loaded_contact_angle_rad
 from quenchsim.bearings.runout.excitation import kinematic_frequencies
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.reader import read_toml, reading
 
 MODELS = ("linear2d", "hertz3d")
 PARTS = ("inner", "outer", "ball")
@@ -277,9 +277,6 @@ def _check_sampling(case: RunoutCase) -> None:
 def load_case(path: str | pathlib.Path) -> RunoutCase:
     """Read and validate a run-out case file (TOML)."""
     p = pathlib.Path(path)
-    require(p.is_file(), "input", str(p), "must be an existing TOML file")
-    try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError("input", str(p), f"is not valid TOML: {exc}") from exc
-    return parse_case(data)
+    data = read_toml(p, "input")
+    with reading(p):
+        return parse_case(data)

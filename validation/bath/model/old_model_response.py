@@ -22,7 +22,7 @@ and its OD sweep from condition 5 (ID 1440 mm/s, as 5 -> 6)."""
 
 def table(case, cond, overrides):
     c = load_case(case[0], cond, overrides)
-    pts, htc = outline_htc(c.profile, c.quench.bath)
+    pts, htc = outline_htc(c.profile, c.bath)
     out = {}
     for seg, idx in segment_groups(htc).items():
         out[seg] = {str(int(T)): float(np.mean([np.interp(T, htc.T_grid_C, htc.h_W_m2K[i]) for i in idx])) for T in T_LIST}

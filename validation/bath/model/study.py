@@ -204,7 +204,7 @@ def _inputs_hash() -> str:
     digest = hashlib.sha256()
     for cond in conds:
         case = load_case(path, cond)
-        _, htc = outline_htc(case.profile, case.quench.bath, spacing_m=5e-3)
+        _, htc = outline_htc(case.profile, case.bath, spacing_m=5e-3)
         inputs = {k: case.data.get(k) for k in ("material", "geometry", "mesh", "process", "quench", "probes")}
         digest.update(json.dumps(inputs, sort_keys=True, default=str).encode())
         digest.update(np.round(htc.h_W_m2K, 3).tobytes())
@@ -269,7 +269,7 @@ def bath_cost(case_path: Path, condition: str, calls: int = 2000) -> dict[str, A
     cooled = np.concatenate([f for n, f in section.boundaries.items() if n != "axis"])
     fe = AxisymmetricP2(section.mesh, cooled)
     points = cooled_surface_points(fe, section)
-    cfg = case.quench.bath
+    cfg = case.bath
     t0 = time.perf_counter()
     htc = boundary_htc(cfg, points)
     build = time.perf_counter() - t0
@@ -389,7 +389,7 @@ def run(workdir: Path) -> dict[str, Any]:
         results = {}
         for cond in conds:
             case = load_case(path, cond)
-            points, htc = outline_htc(case.profile, case.quench.bath)
+            points, htc = outline_htc(case.profile, case.bath)
             results[cond] = (points, htc)
             png = plot_htc(htc, f"case {label} ({case.name}), condition {cond}: segment mean, band = min-max "
                                 f"over the segment", reports_dir / f"bath_htc_condition_{cond}.png")

@@ -1,0 +1,100 @@
+"""The key references of docs/reference/ generated from the declarations (:mod:`quenchsim.inputs.declare`): one
+table of keys per declared table, with what each takes, its unit, default, limits and meaning.
+
+``python dev/write_references.py`` writes them; tests/test_inputs.py checks that the committed files are current.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from quenchsim.inputs.bath import BathTable, NozzleRowTable
+from quenchsim.inputs.case import (Air, HtcTable, MechanicsOptions, Mesh, Output, Probe, ProfileGeometry,
+                                   ProfileSegment, Process, Quench, RectangularGeometry, SphericalOuterGeometry, Temper,
+                                   TimeControl, Transfer)
+from quenchsim.inputs.declare import Table, key_rows
+
+
+@dataclass(frozen=True)
+class Section:
+    """One section of a reference page: a heading, a paragraph and the declared table whose keys it lists."""
+
+    heading: str
+    text: str
+    table: type[Table]
+    skip: tuple[str, ...] = ()
+
+
+def key_table(table: type[Table], skip: tuple[str, ...] = ()) -> list[str]:
+    """The markdown table of ``table``'s declared keys."""
+    lines = ["| key | takes | unit | default | limits | meaning |", "|---|---|---|---|---|---|"]
+    for row in key_rows(table):
+        if row.key in skip:
+            continue
+        cells = [f"`{row.key}`", row.takes, row.unit or "-", row.default, row.limits.replace("|", "/") or "-",
+                 row.doc.replace("|", "/")]
+        lines.append("| " + " | ".join(cells) + " |")
+    return lines
+
+
+def page(title: str, intro: str, sections: list[Section]) -> str:
+    """A reference page: its title, introduction and one key table per section."""
+    lines = [f"# {title}", "", intro.strip(), "",
+             "Generated from the declarations in quenchsim/inputs/ by `python dev/write_references.py`; do not edit by "
+             "hand (tests/test_inputs.py checks it is current).", ""]
+    for section in sections:
+        lines += [f"## {section.heading}", ""]
+        if section.text:
+            lines += [section.text.strip(), ""]
+        lines += [*key_table(section.table, section.skip), ""]
+    return "\n".join(lines).rstrip() + "\n"
+
+
+CASE_INTRO = """
+Every key a case file (`quenchsim run CASE.toml`) accepts, with what it takes, its unit, default and limits. A key not
+listed is an error when the case loads (`unknown key; [table] takes ...`, with the closest known name), in every
+condition's tables too; an error names the file, the key, the value and what is allowed. How to use them:
+[../guide/run_a_ring.md](../guide/run_a_ring.md). Lengths in mm, times in s, temperatures in C. "required" means no
+default; a `[conditions.NAME]` table holds any of the tables below (not `conditions`) and is merged over the case
+with `--condition NAME`. Any key can be set from the command line with `--set TABLE.KEY=VALUE`.
+"""
+
+
+def case_keys() -> str:
+    """docs/reference/case_keys.md."""
+    from quenchsim.case.model import Case
+
+    return page("Case file keys", CASE_INTRO, [
+        Section("Top level", "", Case),
+        Section("[geometry], type = \"rectangular\"", "Dimensions before the quench (the part as `reference_state` "
+                "says), in mm.", RectangularGeometry),
+        Section("[geometry], type = \"spherical_outer\"", "", SphericalOuterGeometry),
+        Section("[geometry], type = \"profile\"", "Segment names label the surfaces for HTC tables and the mesh "
+                "(`quenchsim mesh CASE --png mesh.png` shows them).", ProfileGeometry),
+        Section("[[geometry.segments]]", "", ProfileSegment),
+        Section("[mesh]", "`quenchsim run --mesh-size MM` sets the core size (the surface size in proportion). "
+                "`run`, `mesh` and `sweep` refuse sizes whose mesh is estimated above 100,000 triangles unless "
+                "`--force`.", Mesh),
+        Section("[process]", "", Process),
+        Section("[transfer]", "", Transfer),
+        Section("[quench]", "", Quench),
+        Section("[quench.bath]", "The bath model (quenchsim/bath/__init__.py explains what each key does).",
+                BathTable),
+        Section("[quench.bath.nozzles.NAME]", "A nozzle row of the case, or a row of a layout file "
+                "(`materials/baths/NAME.toml`, `kind = \"nozzle_layout\"`); a number may be given as "
+                "`{ value, range, source }`.", NozzleRowTable),
+        Section("[quench.htc_table], [air.htc_table], [temper.htc_table]", "", HtcTable),
+        Section("[air]", "", Air),
+        Section("[temper]", "Optional: a temper after the air stage (docs/guide/temper.md). Without this table a "
+                "case resolves and runs as before.", Temper),
+        Section("[time]", "", TimeControl),
+        Section("[output]", "", Output),
+        Section("[mechanics]", "`austenitizing_T_C` is refused here: the stress-free temperature is "
+                "`process.austenitising_temperature_C`, the case's one austenitising temperature.",
+                MechanicsOptions),
+        Section("[[probes]]", "", Probe),
+    ])
+
+
+REFERENCES = {"docs/reference/case_keys.md": case_keys}
+"""Each generated reference file (relative to the repository) and the function that writes it."""

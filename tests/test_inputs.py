@@ -1,0 +1,123 @@
+"""The input layer (quenchsim/inputs/): every kind of file read one way -- a typo or a bad value is one line naming
+the file, the key, the value and what is allowed (exit 2 from the command line, before any work); a value changed by
+a copy is checked like one read from a file; the key references are generated from the declarations."""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+import shutil
+from pathlib import Path
+
+import pytest
+
+from quenchsim.case import load_case
+from quenchsim.cli import main
+from quenchsim.errors import InputError
+from quenchsim.inputs.declare import from_table, to_table
+from quenchsim.inputs.references import REFERENCES
+
+ROOT = Path(__file__).resolve().parents[1]
+CASE_A = ROOT / "cases" / "crb_outer_ring.toml"
+
+
+def test_the_key_references_are_generated_from_the_declarations_and_current():
+    for name, write in REFERENCES.items():
+        assert (ROOT / name).read_text() == write(), f"{name} is stale: python dev/write_references.py"
+
+
+def _edited(tmp_path: Path, source: Path, old: str, new: str, name: str | None = None) -> Path:
+    text = source.read_text()
+    assert re.search(old, text, flags=re.M), old
+    path = tmp_path / (name or source.name)
+    path.write_text(re.sub(old, new, text, count=1, flags=re.M))
+    return path
+
+
+def _one_line(capsys: pytest.CaptureFixture[str], argv: list[str]) -> str:
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err
+    return err[0]
+
+
+@pytest.mark.parametrize("old, new, message", [
+    (r"^time_s = 900\.0", "tme_s = 900.0", "quench.tme_s = 900.0: unknown key; [quench] takes time_s, htc_model, bath, "
+                                            "htc_table, immersion_speed_mm_s; did you mean time_s?"),
+    (r"^time_s = 900\.0", "time_s = -900.0", "quench.time_s = -900.0: must be > 0 s"),
+    (r"^time_s = 900\.0", 'time_s = "long"', "quench.time_s = 'long': must be a finite number"),
+    (r'^htc_model = "bath"', 'htc_model = "bth"', "quench.htc_model = 'bth': must be one of 'bath', 'table'; did "
+                                                  "you mean bath?"),
+])
+def test_a_case_typo_or_bad_value_names_the_file_and_key_and_writes_nothing(tmp_path, capsys, old, new, message):
+    case = _edited(tmp_path, CASE_A, old, new)
+    out = tmp_path / "run"
+    err = _one_line(capsys, ["run", str(case), "--condition", "1", "--out", str(out), "--quiet"])
+    assert err == f"quenchsim: error: {case}: {message}"
+    assert not out.exists()
+
+
+def _data_folder(tmp_path: Path, subdir: str, source: Path, old: str, new: str) -> Path:
+    folder = tmp_path / "data"
+    (folder / subdir).mkdir(parents=True)
+    _edited(folder / subdir, source, old, new)
+    return folder
+
+
+@pytest.mark.parametrize("source, old, new, message", [
+    ("reference_nozzles.toml", r"^count = \{ value = 8,", "cont = { value = 8,",
+     "nozzles.id.cont = {'value': 8, 'source': '[est] ID nozzles on a central manifold in the bore'}: unknown key"),
+    ("reference_nozzles.toml", r"^diameter_mm = \{ value = 8\.0,", "diameter_mm = { value = -8.0,",
+     "nozzles.id.diameter_mm.value = -8.0: must lie in its range [5.0, 12.0]"),
+    ("jet_bath.toml", r"^corner_carryover = \{ value = 0\.3,", "corner_carryover = { value = 1.3,",
+     "flow.corner_carryover.value = 1.3: must lie in its range [0.1, 0.6]"),
+    ("jet_bath.toml", r"^od = \{ value = 1\.0,", "od = { valu = 1.0,", "htc_factor.od.valu = 1.0: unknown key"),
+])
+def test_a_bath_layout_or_constants_typo_names_its_file(tmp_path, capsys, monkeypatch, source, old, new, message):
+    monkeypatch.setenv("QUENCHSIM_DATA", "")   # --data puts its folder on this process's search path
+    folder = _data_folder(tmp_path, "baths", ROOT / "materials" / "baths" / source, old, new)
+    err = _one_line(capsys, ["run", str(CASE_A), "--condition", "1", "--data", str(folder),
+                             "--out", str(tmp_path / "run"), "--quiet"])
+    assert err.startswith(f"quenchsim: error: {folder / 'baths' / source}: {message}"), err
+
+
+def test_a_copy_with_a_changed_value_is_checked_like_a_file():
+    case = load_case(CASE_A, "1")
+    longer = dataclasses.replace(case, quench=dataclasses.replace(case.quench, time_s=900.0))
+    assert longer.quench.time_s == 900.0 and case.quench.time_s == 900.0
+    longer = dataclasses.replace(case, quench=dataclasses.replace(case.quench, time_s=1200.0))
+    assert longer.quench.time_s == 1200.0 and case.quench.time_s == 900.0
+    assert longer.resolved() == case.with_overrides({"quench.time_s": 1200.0}).resolved()
+    with pytest.raises(InputError, match=r"^time_s = -1\.0: must be > 0 s$"):
+        dataclasses.replace(case.quench, time_s=-1.0)
+    with pytest.raises(InputError, match=r"^until_max_C = 10\.0: must be >= 25"):
+        dataclasses.replace(case, air=dataclasses.replace(case.air, until_max_C=10.0))
+    with pytest.raises(InputError, match=r"^mesh\.size_mm = 400\.0: must be > 0 and at most 173 mm"):
+        dataclasses.replace(case, mesh=dataclasses.replace(case.mesh, size_mm=400.0))
+
+
+def test_a_case_reads_back_as_written_so_its_digest_does_not_depend_on_how_it_was_built(tmp_path):
+    """The resolved inputs keep the numbers in the form written (an integer stays one): a case written to case.toml
+    and read again is the same case, with the same case_sha256."""
+    import tomli_w
+
+    case = load_case(CASE_A, "1", {"quench.time_s": 600, "temper.temperature_C": 180, "temper.time_s": 7200})
+    assert case.resolved()["quench"]["time_s"] == 600 and isinstance(case.resolved()["quench"]["time_s"], int)
+    assert case.quench.time_s == 600.0 and isinstance(case.quench.time_s, float)
+    written = tmp_path / "case.toml"
+    written.write_text(tomli_w.dumps({k: v for k, v in case.resolved().items() if k != "condition"}))
+    again = load_case(written)
+    assert again.digest() != case.digest()   # the condition is part of what ran
+    assert {**again.resolved(), "condition": "1"} == case.resolved()
+    shutil.copy(written, tmp_path / "copy.toml")
+    assert load_case(tmp_path / "copy.toml").resolved() == {**again.resolved(), "name": again.name}
+
+
+def test_a_table_reads_back_to_what_it_was_given():
+    from quenchsim.inputs.case import Air
+
+    air = from_table(Air, {"until_max_C": 45, "htc_model": "natural"}, "air")
+    assert air.until_max_C == 45.0 and to_table(air)["until_max_C"] == 45
+    assert to_table(air) == {"temperature_C": 25.0, "until_max_C": 45, "time_s": 20000.0, "htc_model": "natural",
+                             "emissivity": 0.8}
+    assert to_table(dataclasses.replace(air, until_max_C=50.0))["until_max_C"] == 50.0
