@@ -21,7 +21,6 @@ from typing import Any
 import numpy as np
 from quenchsim import closing
 from quenchsim.case import Case
-from quenchsim.materials import load_material
 from quenchsim.quench_setup import (TEMPER_STAGES, QuenchModel, require_mechanics_data, stage_htc, stages,
                                     step_controller)
 from quenchsim.errors import InputError, QuenchsimError, RunInterrupted, SolverError
@@ -80,8 +79,7 @@ class QuenchRun(QuenchModel):
             raise InputError("--resume", str(out_dir), "a run with a [temper] stage cannot be resumed yet; run it "
                              "again without --resume")
         checkpoint = read_resumable(self.checkpoint_path, case.resolved(), Path(out_dir)) if resume else None
-        material = load_material(case.material)
-        require_mechanics_data(case, material)   # a transforming steel without mechanics data: refused, nothing written
+        require_mechanics_data(case)   # a transforming steel without mechanics data: refused, nothing written
         if not resume:
             claim_run_folder(out_dir, force)
         self.writer = RunWriter(out_dir)
@@ -92,7 +90,7 @@ class QuenchRun(QuenchModel):
         self.bar = RunProgress(f"{case.name}[{case.condition}]" if case.condition else case.name,
                                sum(st.duration_s for st in stages(case)), enabled=progress)
         self.bar.phase("meshing")
-        super().__init__(case, material, self.writer.mesh_path)
+        super().__init__(case, self.writer.mesh_path)
         self.timings = StageTimings()
         self.counts: dict[str, Any] = {"steps": 0, "rejected": 0, "heat_out_J": 0.0, "latent_J": 0.0}
         self.position: dict[str, Any] = {"stage": 0, "stage_end_s": None, "dt_s": case.time.dt_initial_s}

@@ -18,7 +18,7 @@ from quenchsim.geometry import BoundaryPoints, SectionMesh, boundary_points, mes
 from quenchsim.geometry.profile import MM, Profile
 from quenchsim.fem import INTORDER
 from quenchsim.inputs.declare import to_table
-from quenchsim.materials import load_material, thermal_properties, transforms
+from quenchsim.materials import thermal_properties
 from quenchsim.results.final_part import FinalPart
 from quenchsim.results.postprocess import NodalProjection
 from quenchsim.thermal import (AxisymmetricP2, HeatingHTC, ImmersionHTC, SurfaceTemperatureHTC, TableHTC,
@@ -39,7 +39,7 @@ class Section:
     mech_model: Any
 
 
-def build_section(case: Case, material: dict[str, Any], msh_path: Path) -> Section:
+def build_section(case: Case, msh_path: Path) -> Section:
     """Mesh the case's profile and move it to the austenitised geometry.
 
     The quench starts from the austenitised section whether or not the stress is solved; the "before"
@@ -48,15 +48,11 @@ def build_section(case: Case, material: dict[str, Any], msh_path: Path) -> Secti
     T_aust = case.process.austenitising_temperature_C
     section = mesh_profile(case.profile, case.mesh.size_mm * MM, case.mesh.surface_size_mm * MM,
                            case.mesh.surface_layer_mm * MM, msh_path=msh_path)
-    if "mechanics" not in material:
+    if case.steel.mechanics is None:
         return Section(section, section.mesh, case.profile, 1.0, None)
     solve_stress = case.mechanics.enabled
     # a thermal-only run needs the free strains (for the hot section) but no flow or TRIP data
-    m = case.mechanics
-    options = ({"plasticity": m.plasticity, "trip": m.trip, "newton_rtol": m.newton_rtol,
-                "max_newton_iterations": m.max_newton_iterations} if solve_stress
-               else {"plasticity": False, "trip": False})
-    mech_model = mechanics.load_mechanics(material, {**options, "austenitizing_T_C": T_aust})
+    mech_model = mechanics.load_mechanics(case.steel, case.mechanics.solver_options(T_aust))
     scale = mechanics.austenitized_scale(mech_model)
     mesh = section.mesh
     if case.geometry.reference_state == "annealed":
@@ -141,15 +137,11 @@ def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
     return SurfaceTemperatureHTC(bath.air_htc(points, case.air.temperature_C, case.air.emissivity))
 
 
-def require_mechanics_data(case: Case, material: dict[str, Any] | None = None) -> None:
+def require_mechanics_data(case: Case) -> None:
     """Refuse a mechanics run of a steel that has no mechanics data, before any work: the run would compute no
     dimensions, distortion or stresses (a fitted steel, ``material = "path/NAME.toml"``, has none until
-    ``NAME.mechanics.toml`` is put beside it). A steel that does not transform is thermal only and passes.
-    ``material``: the case's material when loaded already."""
-    if not case.mechanics.enabled:
-        return
-    material = load_material(case.material) if material is None else material
-    if "mechanics" in material or not transforms(material):
+    ``NAME.mechanics.toml`` is put beside it). A steel that does not transform is thermal only and passes."""
+    if not case.mechanics.enabled or case.steel.mechanics is not None or not case.steel.transforms:
         return
     stem = Path(case.material).with_suffix("") if case.material.endswith(".toml") else Path(case.material)
     raise InputError("material", case.material, f"has no mechanics data ({stem.name}.mechanics.toml beside it or a "
@@ -162,24 +154,23 @@ class QuenchModel:
     the stress solver when the stress is solved (``mech``, None otherwise), the final part and the probes' reading
     matrix (their positions move with the section to the austenitised geometry)."""
 
-    def __init__(self, case: Case, material: dict[str, Any], mesh_path: Path) -> None:
-        """Mesh the case's section (written to ``mesh_path``) and build the solvers on it (``material``: the case's,
-        :func:`load_material`)."""
-        self.material = material
+    def __init__(self, case: Case, mesh_path: Path) -> None:
+        """Mesh the case's section (written to ``mesh_path``) and build the solvers on it from the case's steel."""
+        steel = case.steel
         self.T_aust = case.process.austenitising_temperature_C
         self.T_room = case.process.room_temperature_C
-        built = build_section(case, self.material, mesh_path)
+        built = build_section(case, mesh_path)
         self.section, self.before_mesh, self.profile_before = built.hot, built.before_mesh, built.profile_before
         self.profile, self.case_to_hot, self.mech_model = built.hot.profile, built.case_to_hot, built.mech_model
         cooled = np.concatenate([f for n, f in self.section.boundaries.items() if n != "axis"])
         self.fe = AxisymmetricP2(self.section.mesh, cooled, intorder=INTORDER)
         self.points = cooled_surface_points(self.fe, self.section)
-        self.kin = metallurgy.load_kinetics(self.material, self.T_aust) if transforms(self.material) else None
+        self.kin = metallurgy.load_kinetics(steel, self.T_aust) if steel.transforms else None
         self.tempering = (None if case.temper is None or self.kin is None
-                          else metallurgy.load_tempering(self.material, self.kin))
+                          else metallurgy.load_tempering(steel, self.kin))
         # the quench's phase model; a [temper] replaces it by the tempering one (pipeline.QuenchRun._start_temper)
         self.phase_model: Any = metallurgy.PhaseModel(self.kin)
-        self.thermal = ThermalSolver(self.fe, thermal_properties(self.material), self.T_aust, self.phase_model,
+        self.thermal = ThermalSolver(self.fe, thermal_properties(steel), self.T_aust, self.phase_model,
                                      self.phase_model.initial_state(self.fe.r_qp.shape))
         self.projection = NodalProjection(self.section.mesh, INTORDER)
         fixed = case.mechanics.fixed_point_mm

@@ -33,6 +33,8 @@ from quenchsim.geometry.profile import MM, Profile, profile_from_geometry
 from quenchsim.inputs.case import (TEMPER_MAX_C, Air, FreeTable, Geometry, HtcTable, MechanicsOptions, Mesh, Output, Probe,
                                    Process, Quench, Temper, TimeControl, Transfer)
 from quenchsim.inputs.declare import REQUIRED, Table, quantity, resolved, to_table
+from quenchsim.inputs.reader import reading
+from quenchsim.materials import Steel, load_steel
 
 TransferStage, QuenchStage, AirStage, TemperStage, ProcessSpec, MeshSpec, OutputSpec = (
     Transfer, Quench, Air, Temper, Process, Mesh, Output)
@@ -75,8 +77,8 @@ class Case(Table):
     """The case file (None for a case built from a table)."""
     profile: Profile = resolved(init=False)
     """The section (m), built from ``geometry``."""
-    steel: Mapping[str, Any] = resolved(init=False)
-    """The steel's data (:func:`quenchsim.materials.load_material`)."""
+    steel: Steel = resolved(init=False)
+    """The steel (:func:`quenchsim.materials.load_steel`), its mechanics and tempering data resolved."""
     bath: BathConfig | None = resolved(init=False)
     """The bath the model runs on (``quench.htc_model = "bath"``), else None."""
 
@@ -91,10 +93,14 @@ class Case(Table):
         media colder than the austenitised part, the temper)."""
         set_ = object.__setattr__
         set_(self, "material", _material_name(self.material, self.path))
-        set_(self, "steel", _steel(self.material))
+        set_(self, "steel", load_steel(self.material))
+        with reading(self.steel.path):
+            self.steel.require_run_data()
         set_(self, "profile", profile_from_geometry(self.geometry))
         self._check_mesh()
-        _austenitising_in_range(self.steel, self.process.austenitising_temperature_C)
+        if self.steel.transforms:   # its dissolved carbon, Ms and kinetics are known within its tabulated range
+            self.steel.check_austenitising_temperature(self.process.austenitising_temperature_C,
+                                                       "process.austenitising_temperature_C")
         segments = sorted({s.name for s in self.profile.segments} - {"axis"})
         set_(self, "bath", resolve_bath(self.quench.bath, "quench.bath")
              if self.quench.htc_model == "bath" and self.quench.bath is not None else None)
@@ -160,7 +166,7 @@ class Case(Table):
         if temper.htc_model == "table":
             _htc_tables(temper.htc_table, "temper.htc_table", segments)
         if not has_tempering(self.steel):
-            tempering = self.steel.get("tempering")
+            tempering = self.steel.tempering
             named = f" (its file names {tempering!r}, not found)" if isinstance(tempering, str) else ""
             raise InputError("temper", self.material, f"this steel has no tempering data{named}: a `tempering` file "
                              "named in its material file, as materials/SUJ3.toml names data/tempering_1C_Cr.toml; "
@@ -241,25 +247,6 @@ def _material_name(name: str, case_path: Path | None) -> str:
         file = (case_path.parent if case_path is not None else Path.cwd()) / file
     require(file.is_file(), "material", name, f"no such file ({file})")
     return str(file.resolve())
-
-
-def _steel(name: str) -> Mapping[str, Any]:
-    """The steel's data, its ``transformations`` checked."""
-    from quenchsim.materials import load_material, transforms
-
-    steel = load_material(name)
-    transforms(steel)
-    return steel
-
-
-def _austenitising_in_range(steel: Mapping[str, Any], T_aust_C: float) -> None:
-    """The austenitising temperature within the steel's tabulated range (a transforming steel's dissolved carbon, Ms
-    and kinetics are known there only; outside it a run failed later, after writing its first files)."""
-    from quenchsim.materials import transforms
-    from quenchsim.metallurgy.kinetics import check_austenitising_temperature
-
-    if transforms(dict(steel)):
-        check_austenitising_temperature(steel, T_aust_C, "process.austenitising_temperature_C")
 
 
 def _htc_tables(table: HtcTable | None, field: str, segments: list[str]) -> None:

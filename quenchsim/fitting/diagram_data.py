@@ -68,7 +68,8 @@ from quenchsim.errors import InputError
 from quenchsim.inputs.reader import read_toml
 from quenchsim.metallurgy.cct import FINISH_SHARE, MIN_FINISH_AMOUNT, START_FRACTION
 from quenchsim.metallurgy.hardness import hrc_to_hv
-from quenchsim.metallurgy.kinetics import C_CURVE_PARAMETERS, N_NODES, n_exponent_nodes
+from quenchsim.inputs.steel import n_exponent_nodes
+from quenchsim.metallurgy.kinetics import C_CURVE_PARAMETERS, N_NODES
 
 KINDS = ("printed", "read")
 """How a point was obtained: a number printed in the source, or read off a figure."""

@@ -251,9 +251,28 @@ class Output(Table):
 
 
 @dataclass(frozen=True, kw_only=True)
-class MechanicsOptions(Table):
-    """``[mechanics]``: whether the stress is solved, the fixed point and the stress solver's options (passed to
-    :func:`quenchsim.mechanics.load_mechanics`)."""
+class StressSolverOptions(Table):
+    """The stress solver's options (:func:`quenchsim.mechanics.load_mechanics`): a thermo-elastic model has
+    ``plasticity`` and ``trip`` false."""
+
+    plasticity: bool = quantity(True, written=True, doc="J2 plasticity")
+    trip: bool = quantity(True, written=True, doc="transformation plasticity")
+    newton_rtol: float = quantity(1e-8, ge=1e-14, le=1e-2, doc="Newton tolerance relative to the step's residual")
+    max_newton_iterations: int = quantity(25, ge=1, le=1000, doc="Newton iterations per stress step")
+
+
+@dataclass(frozen=True, kw_only=True)
+class SolverOptions(StressSolverOptions):
+    """The options of a stress model built in code: the case's, with the stress-free temperature (a case sets it
+    once, as process.austenitising_temperature_C; None: the mechanics file's ``[reference]``)."""
+
+    austenitizing_T_C: float | None = quantity(None, unit="C", ge=500.0, le=1300.0,
+                                               doc="stress-free temperature (default: the mechanics file's)")
+
+
+@dataclass(frozen=True, kw_only=True)
+class MechanicsOptions(StressSolverOptions):
+    """``[mechanics]``: whether the stress is solved, the fixed point and the stress solver's options."""
 
     OTHER_KEYS = ("austenitizing_T_C", "austenitising_T_C", "austenitising_temperature_C")
     """Refused with their own message: a case has one austenitising temperature (its [process] one)."""
@@ -262,10 +281,6 @@ class MechanicsOptions(Table):
     fixed_point_mm: tuple[float, float] | None = quantity(None, unit="mm", doc="[r, z] (case geometry) of the point "
                                                           "held axially", allowed="must be [r, z] in mm (case "
                                                           "geometry)")
-    plasticity: bool = quantity(True, written=True, doc="J2 plasticity")
-    trip: bool = quantity(True, written=True, doc="transformation plasticity")
-    newton_rtol: float = quantity(1e-8, ge=1e-14, le=1e-2, doc="Newton tolerance relative to the step's residual")
-    max_newton_iterations: int = quantity(25, ge=1, le=1000, doc="Newton iterations per stress step")
 
     def check(self) -> None:
         for key in self.OTHER_KEYS:
@@ -273,6 +288,14 @@ class MechanicsOptions(Table):
                 raise InputError(key, self._given[key], "is not a mechanics option: a case has one austenitising "
                                  "temperature, process.austenitising_temperature_C (the stress-free state too); set "
                                  "that")
+
+    def solver_options(self, austenitizing_T_C: float) -> SolverOptions:
+        """The stress solver's options of a run austenitised at ``austenitizing_T_C`` (plasticity and TRIP off when
+        the stress is not solved: the model then gives the free strains only)."""
+        if not self.enabled:
+            return SolverOptions(plasticity=False, trip=False, austenitizing_T_C=austenitizing_T_C)
+        return SolverOptions(plasticity=self.plasticity, trip=self.trip, newton_rtol=self.newton_rtol,
+                             max_newton_iterations=self.max_newton_iterations, austenitizing_T_C=austenitizing_T_C)
 
 
 @dataclass(frozen=True, kw_only=True)

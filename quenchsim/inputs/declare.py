@@ -30,13 +30,18 @@ import dataclasses
 import math
 import types
 import typing
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, ClassVar, Literal, TypeVar, Union, get_args, get_origin
 
 from quenchsim.errors import InputError, did_you_mean
 
 REQUIRED: Any = dataclasses.MISSING
+CONVERTERS: dict[Any, Callable[[Any, str], Any]] = {}
+"""Conversions of value types a kind of file defines itself (a steel's property forms, :mod:`quenchsim.inputs.steel`):
+annotation -> function(value as read, key path) returning the value or raising :class:`InputError`."""
+TYPE_NAMES: dict[Any, str] = {}
+"""What a value of such a type looks like, for messages and references ("a property: value, table, ...")."""
 """The default of a key that has none (the file must give it)."""
 
 T = TypeVar("T", bound="Table")
@@ -127,6 +132,11 @@ class Table:
         """Rules that tie the table's keys together; raise :class:`InputError` naming the key (relative to the
         table). Runs on every construction, :func:`dataclasses.replace` included."""
 
+    @classmethod
+    def check_keys_given(cls, table: Mapping[str, Any]) -> None:
+        """Rules on which keys a table read from a file may give together, checked before its values are read (so
+        that the message names the rule, not a value the rule makes irrelevant)."""
+
 
 @dataclass(frozen=True, kw_only=True)
 class DataFile(Table):
@@ -169,7 +179,7 @@ def key_of(f: dataclasses.Field[Any]) -> str:
 
 
 # -- reading ---------------------------------------------------------------------------------------------------------
-def from_table(cls: type[T], table: Any, where: str = "", **derived: Any) -> T:
+def from_table(cls: type[T], table: Any, where: str = "", /, **derived: Any) -> T:
     """The declared table ``cls`` from ``table`` (as read from TOML) at table path ``where`` (``"quench.bath"``;
     ``""`` for a file's top level). Unknown keys, missing required keys, wrong types and values outside the limits
     are :class:`InputError` naming ``where.key``. ``derived``: values of fields the file does not give (``init``
@@ -183,6 +193,10 @@ def from_table(cls: type[T], table: Any, where: str = "", **derived: Any) -> T:
         if key not in allowed:
             raise InputError(_join(where, key), table[key], f"{cls.UNKNOWN}; [{where or 'top level'}] takes "
                                                              f"{', '.join(allowed)}{did_you_mean(key, allowed)}")
+    try:
+        cls.check_keys_given(table)
+    except InputError as exc:
+        raise _located(exc, where) from None
     values: dict[str, Any] = dict(derived)
     given: dict[str, Any] = {}
     for key, f in keys.items():
@@ -281,6 +295,8 @@ def _describe(tp: Any) -> str:
         return "a string"
     if tp is Any:
         return "any value"
+    if tp in TYPE_NAMES:
+        return TYPE_NAMES[tp]
     if isinstance(tp, type) and issubclass(tp, Table):
         return "a table"
     origin, args = get_origin(tp), get_args(tp)
@@ -313,6 +329,8 @@ def convert(value: Any, tp: Any, where: str, spec: Spec = Spec()) -> Any:
         value = _sourced_value(value, where)
     if tp is Any:
         return value
+    if tp in CONVERTERS:
+        return CONVERTERS[tp](value, where)
     if _is_union(tp):
         members = [a for a in get_args(tp) if a is not type(None)]
         kinds = _kinds(members)
@@ -384,8 +402,9 @@ def convert(value: Any, tp: Any, where: str, spec: Spec = Spec()) -> Any:
     raise TypeError(f"quenchsim.inputs: no conversion for the annotation {tp!r} ({where})")
 
 
-KIND_KEYS = ("type", "kind")
-"""The keys that say which of several declared tables a table is (``[geometry] type = "profile"``)."""
+KIND_KEYS = ("type", "kind", "model", "form")
+"""The keys that say which of several declared tables a table is (``[geometry] type = "profile"``, a reaction's
+``model``, the free strain's ``form``)."""
 
 
 def _kinds(members: list[Any]) -> tuple[str, dict[Any, type[Table]]] | None:

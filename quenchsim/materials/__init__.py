@@ -25,17 +25,21 @@ from __future__ import annotations
 
 import contextlib
 import os
-from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
 from quenchsim.errors import InputError
-from quenchsim.inputs.reader import read_toml
+from quenchsim.inputs.declare import from_table
+from quenchsim.inputs.reader import read_toml, reading
+from quenchsim.inputs.steel import TRANSFORMATIONS, Steel, steel_from_table
+from quenchsim.inputs.steel_mechanics import SteelMechanics
 from quenchsim.materials.properties import PHASES, Property, parse_property
 from quenchsim.shipped import shipped_dir
 
-__all__ = ["PHASES", "Property", "parse_property", "materials_dir", "load_material", "ThermalProperties",
+__all__ = ["PHASES", "Property", "parse_property", "materials_dir", "load_material", "load_steel", "as_steel",
+           "Steel", "TRANSFORMATIONS", "ThermalProperties",
            "thermal_properties", "load_data_file", "find_data_file", "data_folders", "use_data_folders",
            "shipped_data_only", "USER_DATA_FOLDER", "DATA_ENV"]
 
@@ -131,10 +135,11 @@ def load_data_file(name: str, subdir: str | tuple[str, ...] = "", field: str = "
 
 def load_material(name: str, field: str = "material") -> dict[str, Any]:
     """The raw material table of steel ``name``, with ``NAME.mechanics.toml`` (beside the steel's file) merged as
-    ``"mechanics"`` and the file its ``tempering`` key names (relative to it) as ``"tempering"``."""
+    ``"mechanics"`` and the file its ``tempering`` key names (relative to it) as ``"tempering"`` (the table the
+    calibration scales; the checked steel is :func:`load_steel`)."""
     path = find_data_file(name, field=field)
     data = load_data_file(str(path), field=field)
-    mech_path = path.with_name(f"{path.stem}.mechanics.toml")
+    mech_path = _mechanics_file(path)
     if "mechanics" not in data and mech_path.is_file():
         data["mechanics"] = read_toml(mech_path, f"{field} mechanics")
     if isinstance(data.get("tempering"), str):
@@ -148,22 +153,38 @@ def load_material(name: str, field: str = "material") -> dict[str, Any]:
     return data
 
 
-TRANSFORMATIONS = ("austenite", "none")
-"""``transformations`` of a material file: ``"austenite"`` (default: the austenite decomposes on cooling; the file
-needs [kinetics], [hardness] and the martensite data) or ``"none"`` (nothing transforms, e.g. an austenitic or
-nickel alloy: only [thermal] is needed, the run is thermal only and reports no phases and no hardness)."""
+def _mechanics_file(path: Path) -> Path:
+    return path.with_name(f"{path.stem}.mechanics.toml")
 
 
-def transforms(material: dict[str, Any], field: str = "material") -> bool:
+def load_steel(name: str, field: str = "material") -> Steel:
+    """The checked steel ``name`` (:func:`find_data_file`): its file read against its declaration
+    (:class:`quenchsim.inputs.steel.Steel`), its mechanics file beside it and its tempering data resolved. An error
+    names the file at fault (the steel's or its mechanics file)."""
+    path = find_data_file(name, field=field)
+    table = load_material(name, field)
+    mech_path = _mechanics_file(path)
+    mechanics = None
+    if isinstance(table.get("mechanics"), Mapping) and mech_path.is_file() and "mechanics" not in read_toml(path):
+        with reading(mech_path):
+            mechanics = from_table(SteelMechanics, table["mechanics"])
+    own = {k: v for k, v in table.items() if k != "mechanics" or mechanics is None}
+    with reading(path):
+        steel = from_table(Steel, own, path=path, table=table, **({"mechanics": mechanics} if mechanics else {}))
+    return steel if steel.name else replace(steel, name=path.stem)
+
+
+def as_steel(material: Steel | Mapping[str, Any]) -> Steel:
+    """A steel: ``material`` itself, or the steel of a table built in code (:func:`load_material`'s form, its keys
+    named under its ``name``)."""
+    if isinstance(material, Steel):
+        return material
+    return steel_from_table(material, str(material.get("name", "material")))
+
+
+def transforms(material: Steel | Mapping[str, Any], field: str = "material") -> bool:
     """Whether the material's austenite transforms on cooling (its ``transformations`` key, checked)."""
-    value = material.get("transformations", "austenite")
-    name = material.get("name", field)
-    if value not in TRANSFORMATIONS:
-        raise InputError(f"{name}.transformations", value, f"must be one of {', '.join(TRANSFORMATIONS)}")
-    if value == "none" and "mechanics" in material:
-        raise InputError(f"{name}.transformations", value, "a non-transforming material is thermal only: remove its "
-                                                           "mechanics table/file (the stress model needs the phases)")
-    return value != "none"
+    return as_steel(material).transforms
 
 
 @dataclass(frozen=True)
@@ -176,19 +197,12 @@ class ThermalProperties:
     latent_heat_J_kg: dict[str, Property]
 
 
-def thermal_properties(material: dict[str, Any]) -> ThermalProperties:
-    """Parse the ``[thermal]`` and ``[latent_heat]`` tables of a material."""
-    name = material.get("name", "material")
-    thermal = material.get("thermal")
-    if not isinstance(thermal, dict):
-        raise InputError(f"{name}.thermal", thermal, "the material needs a [thermal] table")
-    props = {}
-    for key in ("density_kg_m3", "conductivity_W_mK", "specific_heat_J_kgK"):
-        if key not in thermal:
-            raise InputError(f"{name}.thermal.{key}", None, "is required")
-        props[key] = parse_property(thermal[key], f"{name}.thermal.{key}")
-    latent = {}
-    for phase in PHASES[1:]:
-        spec = material.get("latent_heat", {}).get(f"{phase}_J_kg", 0.0)
-        latent[phase] = parse_property(spec, f"{name}.latent_heat.{phase}_J_kg")
-    return ThermalProperties(latent_heat_J_kg=latent, **props)
+def thermal_properties(material: Steel | Mapping[str, Any]) -> ThermalProperties:
+    """The thermal properties of a steel's ``[thermal]`` and ``[latent_heat]`` tables."""
+    steel = as_steel(material)
+    thermal, latent = steel.thermal, steel.latent_heat
+    if thermal is None:
+        raise InputError(f"{steel.name}.thermal", None, "the material needs a [thermal] table")
+    return ThermalProperties(density_kg_m3=thermal.density_kg_m3, conductivity_W_mK=thermal.conductivity_W_mK,
+                             specific_heat_J_kgK=thermal.specific_heat_J_kgK,
+                             latent_heat_J_kg={phase: getattr(latent, f"{phase}_J_kg") for phase in PHASES[1:]})

@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 
 from quenchsim.errors import InputError
+from quenchsim.materials import Steel, as_steel
 from quenchsim.materials.properties import PHASES
 from quenchsim.metallurgy.hardness import hrc_to_hv, phase_hardness_HV
 from quenchsim.metallurgy.kinetics import Kinetics, load_kinetics
@@ -153,15 +154,17 @@ def _value(spec: Any, where: str) -> float:
     return float(value)
 
 
-def has_tempering(material: Mapping[str, Any]) -> bool:
-    return isinstance(material.get("tempering"), Mapping)
+def has_tempering(material: Steel | Mapping[str, Any]) -> bool:
+    """Whether the steel has tempering data (the file its ``tempering`` key names, found)."""
+    return isinstance(as_steel(material).tempering, Mapping)
 
 
-def load_tempering(material: Mapping[str, Any], kin: Kinetics) -> Tempering:
-    """The tempering data of ``material`` (its ``tempering`` table, :func:`quenchsim.materials.load_material`) for
+def load_tempering(material: Steel | Mapping[str, Any], kin: Kinetics) -> Tempering:
+    """The tempering data of ``material`` (its ``tempering`` table, :func:`quenchsim.materials.load_steel`) for
     the steel hardened as ``kin`` says (its dissolved carbon sets the clock constant)."""
-    name = str(material.get("name", "material"))
-    data = material.get("tempering")
+    steel = as_steel(material)
+    name = steel.name
+    data = steel.tempering
     if not isinstance(data, Mapping):
         raise InputError("temper", name, "the steel has no tempering data (a `tempering` file named in its material "
                          "file, e.g. data/tempering_1C_Cr.toml); a [temper] stage needs it")
@@ -194,7 +197,7 @@ def load_tempering(material: Mapping[str, Any], kin: Kinetics) -> Tempering:
     pts = [(T, t, 1.0 - r) for T, t, r in _points(relax, "stress_ratio", f"{where}.relaxation")]
     relaxation = jmak_through(pts, C, f"{where}.relaxation")
     base = Tempering(name, C, reactions, relaxation, (0.0,), str(data.get("source", "")))
-    poly = fit_tempered_martensite(base, material, data.get("hardness", {}), f"{where}.hardness")
+    poly = fit_tempered_martensite(base, steel, data.get("hardness", {}), f"{where}.hardness")
     return Tempering(name, C, reactions, relaxation, poly, base.source)
 
 
@@ -230,7 +233,7 @@ HARDNESS_LAWS = {"linear_in_P": 1, "quadratic_in_P": 2}
 """The polynomial degree in P of each form of HV_TM(P)."""
 
 
-def fit_tempered_martensite(tempering: Tempering, material: Mapping[str, Any], table: Mapping[str, Any],
+def fit_tempered_martensite(tempering: Tempering, material: Steel | Mapping[str, Any], table: Mapping[str, Any],
                             where: str) -> tuple[float, ...]:
     """The coefficients of HV_TM(P), a polynomial in P/1000 of the table's ``law``: least squares to the table's HRC after tempering at ``T_C`` for ``time_h`` of a
     specimen hardened from ``austenitising_temperature_C`` and quenched to ``room_temperature_C``, its retained
@@ -242,7 +245,7 @@ def fit_tempered_martensite(tempering: Tempering, material: Mapping[str, Any], t
     hrc = np.asarray(table.get("HRC", []), dtype=float)
     if T.ndim != 1 or T.size < 2 or hrc.shape != T.shape:
         raise InputError(f"{where}.HRC", table.get("HRC"), "needs at least two HRC values, one per T_C")
-    kin = load_kinetics(dict(material), _value(table.get("austenitising_temperature_C"),
+    kin = load_kinetics(material, _value(table.get("austenitising_temperature_C"),
                                                f"{where}.austenitising_temperature_C"))
     room = _value(table.get("room_temperature_C", 25.0), f"{where}.room_temperature_C")
     P = (T + KELVIN) * (tempering.clock_constant + math.log10(_value(table.get("time_h"), f"{where}.time_h")))
