@@ -36,7 +36,7 @@ def recorded_run(case, out, clock=time.process_time):
     does not move; ``"steps"``: the thermal steps taken, which checks the model of the steps left alone)."""
     run = QuenchRun(case, out, progress=False)
     if clock == "steps":
-        run.bar = ThermalStepProgress(case.name, 1.0, enabled=False, clock=lambda: float(run.counts["steps"]))
+        run.bar = ThermalStepProgress(case.name, 1.0, enabled=False, clock=lambda: float(run.counts.steps))
     else:
         run.bar = RunProgress(case.name, 1.0, enabled=False, clock=clock)
     run.run()
