@@ -265,7 +265,7 @@ def _about(spec: Spec) -> str:
 def _join(where: str, key: str | int) -> str:
     if isinstance(key, int):
         return f"{where}[{key}]"
-    return f"{where}.{key}" if where else key
+    return f"{where}.{key}" if where and key else where or key
 
 
 def _located(exc: InputError, where: str) -> InputError:
