@@ -481,7 +481,7 @@ def test_the_seed_systems_note_names_the_verbs_they_were_built_as():
 
 
 def test_the_readmes_test_suite_figure_is_this_suites_and_names_benchs_as_older():
-    """The README's test-time figure and reports/bench.md's "710 tests in 218 s" disagreed without a word."""
+    """The README's test-time figure and docs/experiments/bench.md's "710 tests in 218 s" disagreed without a word."""
     import subprocess
     import sys
 
@@ -491,5 +491,5 @@ def test_the_readmes_test_suite_figure_is_this_suites_and_names_benchs_as_older(
                                cwd=ROOT, capture_output=True, text=True, timeout=300).stdout
     count = int(re.search(r"(\d+)(?:/\d+)? tests collected", collected).group(1))
     assert abs(count - stated) <= 0.15 * count, (count, stated)
-    bench = re.search(r"(\d+) tests in (\d+) s", (ROOT / "reports" / "bench.md").read_text())
+    bench = re.search(r"(\d+) tests in (\d+) s", (ROOT / "docs" / "experiments" / "bench.md").read_text())
     assert f"{bench.group(1)} tests in {bench.group(2)} s were an earlier" in " ".join(readme.split())

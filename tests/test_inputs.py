@@ -121,3 +121,17 @@ def test_a_table_reads_back_to_what_it_was_given():
     assert to_table(air) == {"temperature_C": 25.0, "until_max_C": 45, "time_s": 20000.0, "htc_model": "natural",
                              "emissivity": 0.8}
     assert to_table(dataclasses.replace(air, until_max_C=50.0))["until_max_C"] == 50.0
+
+
+def test_each_input_module_imports_first():
+    """Every module of the input layer imports on its own, first in a fresh interpreter (the steel's declarations
+    read the property forms of quenchsim.materials, whose loader reads the steel's declarations: no import cycle)."""
+    import subprocess
+    import sys
+
+    modules = sorted(p.stem for p in (ROOT / "quenchsim" / "inputs").glob("*.py") if p.stem != "__init__")
+    code = "import importlib, sys; [importlib.import_module(m) for m in sys.argv[1:]]"
+    for module in modules:
+        done = subprocess.run([sys.executable, "-c", code, f"quenchsim.inputs.{module}"], capture_output=True,
+                              text=True, cwd=ROOT)
+        assert done.returncode == 0, (module, done.stderr[-500:])

@@ -34,7 +34,8 @@ from quenchsim.inputs.case import (TEMPER_MAX_C, Air, FreeTable, Geometry, HtcTa
                                    Process, Quench, Temper, TimeControl, Transfer)
 from quenchsim.inputs.declare import REQUIRED, Table, quantity, resolved, to_table
 from quenchsim.inputs.reader import reading
-from quenchsim.materials import Steel, load_steel
+from quenchsim.inputs.steel import Steel
+from quenchsim.materials import load_steel
 
 TransferStage, QuenchStage, AirStage, TemperStage, ProcessSpec, MeshSpec, OutputSpec = (
     Transfer, Quench, Air, Temper, Process, Mesh, Output)

@@ -15,6 +15,7 @@ from typing import Any, Literal
 from quenchsim.errors import InputError, require
 from quenchsim.inputs.declare import REQUIRED, DataFile, Table, convert, quantity
 from quenchsim.inputs.reader import read_toml, reading
+from quenchsim.inputs.steel import Thermal
 
 @dataclass(frozen=True, kw_only=True)
 class ViscosityTable(Table):
@@ -151,7 +152,7 @@ class ProbeFile(DataFile):
     length_mm: float = quantity(REQUIRED, unit="mm", gt=0.0, doc="cylinder length")
     start_temperature_C: float = quantity(REQUIRED, unit="C", doc="the probe's start temperature")
     oil_temperature_C: float = quantity(REQUIRED, unit="C", doc="the standard's oil temperature")
-    thermal: Mapping[str, Any] = quantity(REQUIRED, doc="density, conductivity, specific heat (property forms)")
+    thermal: Thermal = quantity(REQUIRED, doc="density, conductivity, specific heat (property forms, as a steel's)")
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -28,18 +28,18 @@ import os
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from quenchsim.errors import InputError
-from quenchsim.inputs.declare import from_table
 from quenchsim.inputs.reader import read_toml, reading
-from quenchsim.inputs.steel import TRANSFORMATIONS, Steel, steel_from_table
-from quenchsim.inputs.steel_mechanics import SteelMechanics
 from quenchsim.materials.properties import PHASES, Property, parse_property
 from quenchsim.shipped import shipped_dir
 
+if TYPE_CHECKING:   # the steel's declarations (quenchsim.inputs.steel) read the property forms defined here
+    from quenchsim.inputs.steel import LatentHeat, Steel, Thermal
+
 __all__ = ["PHASES", "Property", "parse_property", "materials_dir", "load_material", "load_steel", "as_steel",
-           "Steel", "TRANSFORMATIONS", "ThermalProperties",
+           "ThermalProperties",
            "thermal_properties", "load_data_file", "find_data_file", "data_folders", "use_data_folders",
            "shipped_data_only", "USER_DATA_FOLDER", "DATA_ENV"]
 
@@ -161,6 +161,10 @@ def load_steel(name: str, field: str = "material") -> Steel:
     """The checked steel ``name`` (:func:`find_data_file`): its file read against its declaration
     (:class:`quenchsim.inputs.steel.Steel`), its mechanics file beside it and its tempering data resolved. An error
     names the file at fault (the steel's or its mechanics file)."""
+    from quenchsim.inputs.declare import from_table
+    from quenchsim.inputs.steel import Steel
+    from quenchsim.inputs.steel_mechanics import SteelMechanics
+
     path = find_data_file(name, field=field)
     table = load_material(name, field)
     mech_path = _mechanics_file(path)
@@ -177,6 +181,8 @@ def load_steel(name: str, field: str = "material") -> Steel:
 def as_steel(material: Steel | Mapping[str, Any]) -> Steel:
     """A steel: ``material`` itself, or the steel of a table built in code (:func:`load_material`'s form, its keys
     named under its ``name``)."""
+    from quenchsim.inputs.steel import Steel, steel_from_table
+
     if isinstance(material, Steel):
         return material
     return steel_from_table(material, str(material.get("name", "material")))
@@ -200,9 +206,18 @@ class ThermalProperties:
 def thermal_properties(material: Steel | Mapping[str, Any]) -> ThermalProperties:
     """The thermal properties of a steel's ``[thermal]`` and ``[latent_heat]`` tables."""
     steel = as_steel(material)
-    thermal, latent = steel.thermal, steel.latent_heat
-    if thermal is None:
+    if steel.thermal is None:
         raise InputError(f"{steel.name}.thermal", None, "the material needs a [thermal] table")
+    return thermal_properties_of(steel.thermal, steel.latent_heat)
+
+
+def thermal_properties_of(thermal: Thermal, latent: LatentHeat | None = None) -> ThermalProperties:
+    """The thermal properties of a declared ``[thermal]`` table (a steel's, or the ISO 9950 probe's) and latent
+    heats (none by default)."""
+    if latent is None:
+        from quenchsim.inputs.steel import LatentHeat
+
+        latent = LatentHeat()
     return ThermalProperties(density_kg_m3=thermal.density_kg_m3, conductivity_W_mK=thermal.conductivity_W_mK,
                              specific_heat_J_kgK=thermal.specific_heat_J_kgK,
                              latent_heat_J_kg={phase: getattr(latent, f"{phase}_J_kg") for phase in PHASES[1:]})

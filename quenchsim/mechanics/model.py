@@ -38,7 +38,8 @@ from quenchsim.errors import InputError
 from quenchsim.inputs.case import SolverOptions
 from quenchsim.inputs.declare import from_table
 from quenchsim.inputs.steel_mechanics import MetastableFactor, SpecificVolumeStrain, SteelMechanics
-from quenchsim.materials import PHASES, Property, Steel, as_steel
+from quenchsim.inputs.steel import Steel
+from quenchsim.materials import PHASES, Property, as_steel
 
 TRIP_K_BOUNDS_1_PA = (1e-12, 1e-9)
 """Plausible TRIP constants of the product phases (1/Pa); the published ranges for steels are 4-21e-11

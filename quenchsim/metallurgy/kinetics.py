@@ -29,7 +29,8 @@ from quenchsim.inputs.steel import (CCurveReaction, HardnessTable, JmakPolynomia
                                     ReactionTable)
 from quenchsim.inputs.steel import PhaseHardness as PhaseHardnessTable
 from quenchsim.inputs.steel import Reaction as ReactionSpec
-from quenchsim.materials import Steel, as_steel
+from quenchsim.inputs.steel import Steel
+from quenchsim.materials import as_steel
 from quenchsim.materials.properties import PHASES
 from quenchsim.metallurgy.laws import (c_curve_ln_inverse_tau, jmak_exponent, li_rate, li_sigmoid_integral,
                                        linear_formula)

@@ -36,7 +36,8 @@ from typing import Any
 import numpy as np
 
 from quenchsim.errors import InputError
-from quenchsim.materials import Steel, as_steel
+from quenchsim.inputs.steel import Steel
+from quenchsim.materials import as_steel
 from quenchsim.materials.properties import PHASES
 from quenchsim.metallurgy.hardness import hrc_to_hv, phase_hardness_HV
 from quenchsim.metallurgy.kinetics import Kinetics, load_kinetics

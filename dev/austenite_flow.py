@@ -1,4 +1,6 @@
-"""Flow stress of hot austenite from published hot-deformation laws, for the austenite yield of a quench.
+"""Flow stress of hot austenite from published hot-deformation laws, for the austenite yield of a quench (a maintainer's
+tool: ``python dev/austenite_flow.py`` prints the austenite yield row of materials/SUJ2.mechanics.toml and
+SUJ3.mechanics.toml; the package reads those files, not this).
 
 Two laws, both fitted to measured hot tests (sources in ``materials/data/austenite_flow.toml``):
 
@@ -29,7 +31,9 @@ from quenchsim.inputs.reader import read_toml
 R_J_molK = 8.314462618
 """Molar gas constant, J/(mol K)."""
 
-DATA_FILE = Path(__file__).resolve().parents[2] / "materials" / "data" / "austenite_flow.toml"
+DATA_FILE = Path(__file__).resolve().parents[1] / "materials" / "data" / "austenite_flow.toml"
+"""The data file, in the repository beside dev/ (a maintainer's tool: the numbers it prints are written into the steels'
+mechanics files, which the package reads)."""
 
 
 def kozlowski_III_stress_MPa(T_C: float, strain: float, strain_rate_1_s: float, carbon_wt_pct: float,
