@@ -17,7 +17,6 @@ from quenchsim.errors import InputError
 from quenchsim.geometry import BoundaryPoints, SectionMesh, boundary_points, mesh_profile
 from quenchsim.geometry.profile import MM, Profile
 from quenchsim.fem import INTORDER
-from quenchsim.inputs.declare import to_table
 from quenchsim.materials import thermal_properties
 from quenchsim.results.final_part import FinalPart
 from quenchsim.results.postprocess import NodalProjection
@@ -116,14 +115,14 @@ def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
         assert temper is not None   # a temper stage exists only with a [temper] table
         if temper.htc_model == "table":
             assert temper.htc_table is not None   # the "table" model carries its tables (Temper.check)
-            return parse_htc_table(to_table(temper.htc_table), points.segment, "temper.htc_table")
+            return parse_htc_table(temper.htc_table, points.segment, "temper.htc_table")
         return HeatingHTC(SurfaceTemperatureHTC(bath.air_htc(points, temper.temperature_C, temper.emissivity)))
     if stage == "quench":
         # the quench stage carries its htc_table with the "table" model, the case its bath otherwise (Quench.check)
         oil: TableHTC | SurfaceTemperatureHTC
         if case.quench.htc_model == "table":
             assert case.quench.htc_table is not None
-            oil = parse_htc_table(to_table(case.quench.htc_table), points.segment, "quench.htc_table")
+            oil = parse_htc_table(case.quench.htc_table, points.segment, "quench.htc_table")
         else:
             assert case.bath is not None
             oil = SurfaceTemperatureHTC(bath.boundary_htc(case.bath, points))
@@ -133,7 +132,7 @@ def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
                             case.quench.immersion_speed_mm_s * MM, case.transfer.time_s)
     if case.air.htc_model == "table":
         assert case.air.htc_table is not None   # the "table" model carries its tables (Air.check)
-        return parse_htc_table(to_table(case.air.htc_table), points.segment, "air.htc_table")
+        return parse_htc_table(case.air.htc_table, points.segment, "air.htc_table")
     return SurfaceTemperatureHTC(bath.air_htc(points, case.air.temperature_C, case.air.emissivity))
 
 

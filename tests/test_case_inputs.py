@@ -149,7 +149,7 @@ def test_negative_numbers_in_case_fields():
     ({"colling": 1}, "colling = 1: unknown table or key"),
     ({"time.dt_min_s": 500.0}, "time.dt_min_s = 500.0: must not exceed time.dt_max_s"),
     ({"air.emissivity": 1.5}, "air.emissivity = 1.5: must be <= 1"),
-    ({"mechanics.plastisity": False}, "mechanics.plastisity = False: unknown key; [mechanics] takes enabled"),
+    ({"mechanics.plastisity": False}, "mechanics.plastisity = False: unknown key; [mechanics] takes plasticity"),
     ({"mechanics.plasticity": "yes"}, "mechanics.plasticity = 'yes': must be true or false"),
     ({"mechanics.newton_rtol": 5}, "mechanics.newton_rtol = 5: must be <= 0.01"),
     ({"quench.bath.od_jet_sped_mm_s": 8000}, "quench.bath.od_jet_sped_mm_s = 8000: unknown key; [quench.bath] takes"),

@@ -7,7 +7,6 @@ from __future__ import annotations
 import dataclasses
 import re
 import shutil
-from collections.abc import Mapping
 from pathlib import Path
 
 import pytest
@@ -242,6 +241,7 @@ def test_every_shipped_data_file_and_example_loads_through_the_reader():
     from quenchsim.inputs.bath import ConstantsFile, LayoutFile
     from quenchsim.inputs.quenchant import read_quenchant
     from quenchsim.inputs.reader import read_toml
+    from quenchsim.inputs.tempering import TemperingData
     from quenchsim.materials import load_steel
     from quenchsim.sweep import load_sweep
 
@@ -265,7 +265,7 @@ def test_every_shipped_data_file_and_example_loads_through_the_reader():
             steel = load_steel(str(path))
             mechanics = path.with_name(f"{path.stem}.mechanics.toml")
             read.update({mechanics} if steel.mechanics is not None and mechanics.is_file() else set())
-            if isinstance(steel.tempering, Mapping):   # the tempering data it names (materials/data/...)
+            if isinstance(steel.tempering, TemperingData):   # the tempering data it names (materials/data/...)
                 read.add(ROOT / "materials" / "data" / "tempering_1C_Cr.toml")
         elif path.parent.name == "baths":
             read_baths_file(str(path), LayoutFile if table["kind"] == "nozzle_layout" else ConstantsFile, "file")
@@ -283,3 +283,15 @@ def test_every_shipped_data_file_and_example_loads_through_the_reader():
             continue
         read.add(path)
     assert sorted(set(files) - read) == [], "files no loader read"
+
+
+def test_a_tempering_data_typo_names_its_file(tmp_path, capsys):
+    for original in (STEEL, MECHANICS):
+        (tmp_path / original.name).write_text(original.read_text())
+    (tmp_path / "data").mkdir()
+    bad = _copy(tmp_path / "data", ROOT / "materials" / "data" / "tempering_1C_Cr.toml", r'^law = "quadratic_in_P"',
+                'law = "quadratic"')
+    err = _one_line(capsys, ["run", str(_steel_case(tmp_path)), "--condition", "1", "--set", "temper.temperature_C=180",
+                             "--set", "temper.time_s=7200", "--out", str(tmp_path / "run"), "--quiet"])
+    assert err.startswith(f"quenchsim: error: {bad}: hardness.law = 'quadratic': must be one of linear_in_P, "
+                          "quadratic_in_P; did you mean quadratic_in_P?"), err

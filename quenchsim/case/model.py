@@ -256,4 +256,4 @@ def _htc_tables(table: HtcTable | None, field: str, segments: list[str]) -> None
 
     require(table is not None, field, None, "required (a table) when the htc_model is 'table'")
     assert table is not None
-    parse_htc_table(to_table(table), np.array(segments), field)
+    parse_htc_table(table, np.array(segments), field)

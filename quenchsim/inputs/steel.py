@@ -19,25 +19,12 @@ import numpy as np
 
 from quenchsim.errors import InputError, require
 from quenchsim.inputs.declare import REQUIRED, Table, from_table, quantity, resolved
-from quenchsim.inputs.properties import Property
+from quenchsim.inputs.properties import ELEMENTS, FORMULA_HELP, Property, check_formula
 from quenchsim.inputs.steel_mechanics import SteelMechanics
+from quenchsim.inputs.tempering import TemperingData
 
-ELEMENTS = ("C", "Si", "Mn", "Ni", "Cr", "Mo", "V", "Cu", "Co", "Al", "W", "P", "S")
-"""Alloying elements a composition (wt %) may list."""
 DIFFUSIONAL = ("pearlite", "bainite")
 """Products of the diffusional (JMAK) reactions, in PHASES order."""
-FORMULA_HELP = "must be a table {const = a0, C = a_C, Mn = a_Mn, sqrt_Mo = ...}"
-
-
-def check_formula(formula: Mapping[str, float] | None, where: str) -> None:
-    """A linear composition formula: terms ``const``, an element or ``sqrt_<element>``."""
-    if formula is None:
-        return
-    require(bool(formula), where, dict(formula), FORMULA_HELP)
-    for name, value in formula.items():
-        base = name[5:] if name.startswith("sqrt_") else name
-        require(name == "const" or base in ELEMENTS, f"{where}.{name}", value,
-                f"term must be 'const', an element of {ELEMENTS} or sqrt_<element>")
 
 
 def _increasing(values: tuple[float, ...], minimum: int = 1) -> bool:
@@ -359,8 +346,8 @@ class Steel(Table):
     description: str = quantity("", doc="one line")
     transformations: str = quantity("austenite", choices=TRANSFORMATIONS, doc="\"none\": nothing transforms "
                                     "(thermal only)")
-    tempering: str | Mapping[str, Any] | None = quantity(None, doc="the tempering data file, relative to this file "
-                                                         "or a data folder (data/tempering_1C_Cr.toml)")
+    tempering: str | TemperingData | None = quantity(None, doc="the tempering data file, relative to this file or a "
+                                                     "data folder (data/tempering_1C_Cr.toml); not found: none")
     composition: Composition | None = quantity(None, doc="bulk composition")
     thermal: Thermal | None = quantity(None, doc="thermal properties (required for a run)")
     latent_heat: LatentHeat = quantity(LatentHeat(), doc="latent heats")

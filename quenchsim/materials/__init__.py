@@ -142,19 +142,26 @@ def load_material(name: str, field: str = "material") -> dict[str, Any]:
     mech_path = _mechanics_file(path)
     if "mechanics" not in data and mech_path.is_file():
         data["mechanics"] = read_toml(mech_path, f"{field} mechanics")
-    if isinstance(data.get("tempering"), str):
-        # a tempering data file, relative to the steel's file or to a data folder (a steel copied elsewhere keeps
-        # the shipped data); not found, the steel has none (a [temper] is then refused, naming the file)
-        found = [p for p in (path.parent / data["tempering"], *(f / data["tempering"] for f in data_folders()))
-                 if p.is_file()]
-        if found:
-            data["tempering"] = load_data_file(str(found[0]), field=f"{Path(name).stem}.tempering")
+    tempering = _tempering_file(path, data)
+    if tempering is not None:
+        data["tempering"] = load_data_file(str(tempering), field=f"{Path(name).stem}.tempering")
     data.setdefault("name", Path(name).stem)
     return data
 
 
 def _mechanics_file(path: Path) -> Path:
     return path.with_name(f"{path.stem}.mechanics.toml")
+
+
+def _tempering_file(path: Path, data: Mapping[str, Any]) -> Path | None:
+    """The tempering data file the steel file ``path`` names (its ``tempering`` key), relative to the steel's file or
+    to a data folder (a steel copied elsewhere keeps the shipped data); None when it names none or it is not found
+    (the steel then has none, and a [temper] is refused naming the file)."""
+    name = data.get("tempering")
+    if not isinstance(name, str):
+        return None
+    found = [p for p in (path.parent / name, *(f / name for f in data_folders())) if p.is_file()]
+    return found[0] if found else None
 
 
 def load_steel(name: str, field: str = "material") -> Steel:
@@ -164,17 +171,23 @@ def load_steel(name: str, field: str = "material") -> Steel:
     from quenchsim.inputs.declare import from_table
     from quenchsim.inputs.steel import Steel
     from quenchsim.inputs.steel_mechanics import SteelMechanics
+    from quenchsim.inputs.tempering import TemperingData
 
     path = find_data_file(name, field=field)
     table = load_material(name, field)
+    own_file = read_toml(path, field)
+    resolved: dict[str, Any] = {}   # the tables of other files, each read against its declaration in its file
     mech_path = _mechanics_file(path)
-    mechanics = None
-    if isinstance(table.get("mechanics"), Mapping) and mech_path.is_file() and "mechanics" not in read_toml(path):
+    if isinstance(table.get("mechanics"), Mapping) and mech_path.is_file() and "mechanics" not in own_file:
         with reading(mech_path):
-            mechanics = from_table(SteelMechanics, table["mechanics"])
-    own = {k: v for k, v in table.items() if k != "mechanics" or mechanics is None}
+            resolved["mechanics"] = from_table(SteelMechanics, table["mechanics"])
+    tempering_path = _tempering_file(path, own_file)
+    if tempering_path is not None:
+        with reading(tempering_path):
+            resolved["tempering"] = from_table(TemperingData, table["tempering"])
+    own = {k: v for k, v in table.items() if k not in resolved}
     with reading(path):
-        steel = from_table(Steel, own, path=path, table=table, **({"mechanics": mechanics} if mechanics else {}))
+        steel = from_table(Steel, own, path=path, table=table, **resolved)
     return steel if steel.name else replace(steel, name=path.stem)
 
 
