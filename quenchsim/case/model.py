@@ -30,9 +30,10 @@ from quenchsim.bath import BathConfig
 from quenchsim.bath.config import resolve_bath
 from quenchsim.errors import InputError, require
 from quenchsim.geometry.profile import MM, Profile, profile_from_geometry
-from quenchsim.inputs.case import (TEMPER_MAX_C, Air, FreeTable, Geometry, HtcTable, MechanicsOptions, Mesh, Output, Probe,
+from quenchsim.inputs.case import (TEMPER_MAX_C, Air, FreeTable, Geometry, MechanicsOptions, Mesh, Output, Probe,
                                    Process, Quench, Temper, TimeControl, Transfer)
 from quenchsim.inputs.declare import REQUIRED, Table, quantity, resolved, to_table
+from quenchsim.inputs.htc import HtcTable
 from quenchsim.inputs.reader import reading
 from quenchsim.inputs.steel import Steel
 from quenchsim.materials import load_steel

@@ -9,10 +9,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from quenchsim.inputs.bath import BathTable, NozzleRowTable
-from quenchsim.inputs.case import (Air, HtcTable, MechanicsOptions, Mesh, Output, Probe, ProfileGeometry,
+from quenchsim.inputs.case import (Air, MechanicsOptions, Mesh, Output, Probe, ProfileGeometry,
                                    ProfileSegment, Process, Quench, RectangularGeometry, SphericalOuterGeometry, Temper,
                                    TimeControl, Transfer)
 from quenchsim.inputs.declare import Table, key_rows
+from quenchsim.inputs.htc import HtcTable
 
 
 @dataclass(frozen=True)

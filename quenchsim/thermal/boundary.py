@@ -19,7 +19,7 @@ from typing import Any, cast
 import numpy as np
 
 from quenchsim.errors import InputError, require
-from quenchsim.inputs.case import HtcTable
+from quenchsim.inputs.htc import HtcTable
 from quenchsim.inputs.declare import from_table
 
 
