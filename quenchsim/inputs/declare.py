@@ -70,6 +70,8 @@ class Spec:
     sourced: bool = False
     key: str | None = None
     allowed: str = ""
+    shown: str = ""
+    """The default as the references show it, when its value does not say it (a property's 0)."""
 
     def limits_text(self) -> str:
         """``> 0``, ``0-1``, ``>= -50 and <= 200``: the limits for the references and the messages."""
@@ -96,11 +98,11 @@ def resolved(default: Any = None, *, init: bool = True) -> Any:
 def quantity(default: Any = REQUIRED, *, doc: str = "", unit: str = "", ge: float | None = None,
              gt: float | None = None, le: float | None = None, lt: float | None = None,
              choices: tuple[str, ...] | None = None, source: str = "", written: bool = False, sourced: bool = False,
-             key: str | None = None, allowed: str = "") -> Any:
+             key: str | None = None, allowed: str = "", shown: str = "") -> Any:
     """A declared key of an input table (a dataclass field with a :class:`Spec`); ``default`` :data:`REQUIRED` when
     the file must give it. A mutable default (a dict or list) is copied per instance."""
     spec = Spec(doc=doc, unit=unit, ge=ge, gt=gt, le=le, lt=lt, choices=choices, source=source, written=written,
-                sourced=sourced, key=key, allowed=allowed)
+                sourced=sourced, key=key, allowed=allowed, shown=shown)
     if isinstance(default, (dict, list)):
         value = default
         return field(default_factory=lambda: type(value)(value), metadata={SPEC: spec})
@@ -578,7 +580,9 @@ def key_rows(cls: type[Table]) -> list[KeyRow]:
     for f in declared_fields(cls):
         spec = spec_of(f)
         default = _default(f)
-        if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
+        if spec.shown:
+            shown = spec.shown
+        elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
             shown = "optional" if _optional(f.type) else "required"
         elif default is None or default == {} or default == ():
             shown = "optional"

@@ -97,5 +97,63 @@ def case_keys() -> str:
     ])
 
 
-REFERENCES = {"docs/reference/case_keys.md": case_keys}
+DATA_INTRO = """
+Every key of the data files a case reads: a steel (`materials/NAME.toml`), its mechanics file (`NAME.mechanics.toml`
+beside it) and tempering data, a quenchant (`materials/quenchants/NAME.toml`, by its `kind`), a bath layout or
+constants file (`materials/baths/NAME.toml`). A number of a data file may be given as `{ value = ..., source = "..." }`
+and, when it is uncertain, with its prior for the calibration: `range = [lo, hi]` or `range_factor = f`. A key not
+listed is an error naming the file and the key; how to bring your own steel or oil:
+[../guide/bring_a_steel.md](../guide/bring_a_steel.md), [../guide/bring_an_oil.md](../guide/bring_an_oil.md).
+"""
+
+
+def data_file_keys() -> str:
+    """docs/reference/data_file_keys.md."""
+    from quenchsim.inputs import quenchant, steel, steel_mechanics, tempering
+    from quenchsim.inputs.bath import ConstantsFile, FlowConstants, LayoutFile
+
+    return page("Data file keys", DATA_INTRO, [
+        Section("Steel: top level", "", steel.Steel),
+        Section("Steel: [composition]", "", steel.Composition),
+        Section("Steel: [thermal]", "", steel.Thermal),
+        Section("Steel: [latent_heat]", "", steel.LatentHeat),
+        Section("Steel: [austenitisation]", "", steel.Austenitisation),
+        Section("Steel: [kinetics]", "", steel.KineticsTable),
+        Section("Steel: [kinetics.pearlite] / [kinetics.bainite], model = \"c_curve\"", "Every reaction also takes "
+                "`source` and `T_upper_C` or `T_upper_formula`.", steel.CCurveReaction),
+        Section("model = \"li1998\"", "", steel.LiReaction),
+        Section("model = \"jmak_polynomial\"", "", steel.JmakPolynomialReaction),
+        Section("model = \"ttt_table\"", "", steel.TttTableReaction),
+        Section("Steel: [kinetics.martensite]", "", steel.Martensite),
+        Section("Steel: [hardness.PHASE]", "One table per phase: austenite, pearlite, bainite, martensite.",
+                steel.PhaseHardness),
+        Section("Mechanics file: top level", "", steel_mechanics.SteelMechanics),
+        Section("Mechanics: [reference]", "", steel_mechanics.Reference),
+        Section("Mechanics: [elastic]", "", steel_mechanics.Elastic),
+        Section("Mechanics: [free_strain], form = \"specific_volume\"", "", steel_mechanics.SpecificVolumeStrain),
+        Section("Mechanics: [free_strain.volume_change_pct]", "", steel_mechanics.VolumeChanges),
+        Section("Mechanics: [free_strain], form = \"expansion\"", "", steel_mechanics.ExpansionStrain),
+        Section("Mechanics: [annealed]", "", steel_mechanics.Annealed),
+        Section("Mechanics: [plastic]", "", steel_mechanics.Plastic),
+        Section("Mechanics: [trip]", "", steel_mechanics.Trip),
+        Section("Tempering data: top level", "", tempering.TemperingData),
+        Section("Tempering: [clock]", "", tempering.Clock),
+        Section("Tempering: [hardness]", "", tempering.TemperHardness),
+        Section("Tempering: [reactions.NAME]", "", tempering.TemperReaction),
+        Section("Quenchant, kind = \"liquid\"", "", quenchant.LiquidQuenchant),
+        Section("Liquid: [liquid]", "", quenchant.LiquidProperties),
+        Section("Liquid: [boiling]", "", quenchant.BoilingProperties),
+        Section("Quenchant, kind = \"still_bath_curve\"", "", quenchant.StillBathCurve),
+        Section("Still-bath curve: [test]", "", quenchant.ProbeTest),
+        Section("Still-bath curve: [htc]", "", quenchant.CurveTable),
+        Section("Quenchant, kind = \"gas\"", "", quenchant.GasQuenchant),
+        Section("Gas: [gas]", "", quenchant.GasTable),
+        Section("Bath layout, kind = \"nozzle_layout\"", "Its rows take the keys of a case's "
+                "[quench.bath.nozzles.NAME] (case_keys.md).", LayoutFile),
+        Section("Bath constants, kind = \"bath_constants\"", "", ConstantsFile),
+        Section("Bath constants: [flow]", "", FlowConstants),
+    ])
+
+
+REFERENCES = {"docs/reference/case_keys.md": case_keys, "docs/reference/data_file_keys.md": data_file_keys}
 """Each generated reference file (relative to the repository) and the function that writes it."""

@@ -88,9 +88,9 @@ class LatentHeat(Table):
 
     OTHER_KEYS = ("source",)
 
-    pearlite_J_kg: Property = quantity(ZERO, unit="J/kg", doc="austenite -> pearlite")
-    bainite_J_kg: Property = quantity(ZERO, unit="J/kg", doc="austenite -> bainite")
-    martensite_J_kg: Property = quantity(ZERO, unit="J/kg", doc="austenite -> martensite")
+    pearlite_J_kg: Property = quantity(ZERO, unit="J/kg", shown="0", doc="austenite -> pearlite")
+    bainite_J_kg: Property = quantity(ZERO, unit="J/kg", shown="0", doc="austenite -> bainite")
+    martensite_J_kg: Property = quantity(ZERO, unit="J/kg", shown="0", doc="austenite -> martensite")
 
 
 @dataclass(frozen=True, kw_only=True)
