@@ -9,7 +9,7 @@ command checks out into a git worktree and installs into its own venv (``--basel
 
     python dev/bench.py --baseline-commit cc353be                      # ring A, condition 1, default mesh, 3 x 2 runs
     python dev/bench.py --baseline-python /tmp/venv_old/bin/python --mesh 2 1 0.5 --repeat 1
-    python dev/bench.py --baseline-commit cc353be --profile runs/bench/prof --out reports/bench.md
+    python dev/bench.py --baseline-commit cc353be --profile runs/bench/prof --out docs/experiments/bench.md
     python dev/bench.py --baseline-commit cc353be --set time.max_dX=0.01 --reference runs/ring_a_fine
 
 Per mesh factor it prints the median wall and CPU time of each side, their ratios, the median time of each stage of

@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 from quenchsim.errors import SolverError
+from quenchsim.run_state import RunState
 
 log = logging.getLogger("quenchsim")
 
@@ -19,18 +20,20 @@ STILL_HOT_NOTE = ("the part is still hot: temperatures, phases, hardness, dimens
                   "end of the last stage, not of the cooled part")
 
 
-def end_state(run: Any, closing_step: bool = True) -> dict[str, Any]:
+def end_state(run: RunState, closing_step: bool = True) -> dict[str, Any]:
     """Close ``run`` (a :class:`quenchsim.pipeline.QuenchRun`) at room temperature when the part has cooled to
     within ``air.until_max_C`` and ``closing_step``; otherwise report the hot state as it is. Returns the
     summary's ``end_state`` (temperatures in C, time in s)."""
     T_max, T_min = float(np.max(run.thermal.T)), float(np.min(run.thermal.T))
-    until_max_C = run.case.air.until_max_C if run.case.temper is None else run.case.temper.cool_until_max_C
+    temper = run.case.temper
+    until_max_C = run.case.air.until_max_C if temper is None or temper.cool_until_max_C is None \
+        else temper.cool_until_max_C
     if closing_step and T_max <= until_max_C + 1e-9:
         close_at_room_temperature(run)
         return {"at_room_temperature": True, "time_s": float(run.thermal.time_s),
                 "max_temperature_before_closing_C": T_max}
     try:   # the stresses of the last thermal state (a failed or interrupted run; the checkpoint is written)
-        run._mechanics_catch_up()
+        run.catch_up_stresses()
     except SolverError as exc:
         log.error("stresses and dimensions are those at the last stress step before t = %.4g s: %s",
                   run.thermal.time_s, exc)
@@ -41,7 +44,7 @@ def end_state(run: Any, closing_step: bool = True) -> dict[str, Any]:
             "min_temperature_C": T_min, "note": STILL_HOT_NOTE}
 
 
-def close_at_room_temperature(run: Any) -> None:
+def close_at_room_temperature(run: RunState) -> None:
     """The final state: the whole ring at room temperature, reached in one step with the martensite that the
     last few kelvin still form.
 

@@ -11,13 +11,27 @@ class QuenchsimError(Exception):
 
 
 class InputError(QuenchsimError, ValueError):
-    """A bad input value: ``InputError("geometry.od_mm", 10.0, "must exceed geometry.id_mm = 20")``."""
+    """A bad input value: ``InputError("geometry.od_mm", 10.0, "must exceed geometry.id_mm = 20")``; with ``file``
+    (the input file it came from, set by :func:`quenchsim.inputs.reading` when the error leaves that file's reading)
+    the message starts with it: ``cases/ring.toml: geometry.od_mm = 10.0: must exceed geometry.id_mm = 20``."""
 
-    def __init__(self, field: str, value: Any, allowed: str) -> None:
+    def __init__(self, field: str, value: Any, allowed: str, file: str | None = None) -> None:
         self.field = field
         self.value = value
         self.allowed = allowed
-        super().__init__(f"{field} = {value!r}: {allowed}")
+        self.file = file
+        super().__init__(self._message())
+
+    def _message(self) -> str:
+        where = f"{self.file}: " if self.file else ""
+        return f"{where}{self.field} = {self.value!r}: {self.allowed}"
+
+    def in_file(self, file: str) -> "InputError":
+        """This error, naming ``file`` (unless it names one already: the innermost file read is the one at fault)."""
+        if self.file is None:
+            self.file = file
+            self.args = (self._message(),)
+        return self
 
 
 class SolverError(QuenchsimError, RuntimeError):

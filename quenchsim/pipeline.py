@@ -21,7 +21,6 @@ from typing import Any
 import numpy as np
 from quenchsim import closing
 from quenchsim.case import Case
-from quenchsim.materials import load_material
 from quenchsim.quench_setup import (TEMPER_STAGES, QuenchModel, require_mechanics_data, stage_htc, stages,
                                     step_controller)
 from quenchsim.errors import InputError, QuenchsimError, RunInterrupted, SolverError
@@ -35,6 +34,7 @@ from quenchsim.results.assemble import final_frame, nodal_fields, run_summary, s
 from quenchsim.results.writer import claim_run_folder
 from quenchsim.results.stream import RunRecord
 from quenchsim.results.timings import StageTimings
+from quenchsim.run_state import Position, StepCounts
 
 log = logging.getLogger("quenchsim")
 
@@ -80,8 +80,7 @@ class QuenchRun(QuenchModel):
             raise InputError("--resume", str(out_dir), "a run with a [temper] stage cannot be resumed yet; run it "
                              "again without --resume")
         checkpoint = read_resumable(self.checkpoint_path, case.resolved(), Path(out_dir)) if resume else None
-        material = load_material(case.material)
-        require_mechanics_data(case, material)   # a transforming steel without mechanics data: refused, nothing written
+        require_mechanics_data(case)   # a transforming steel without mechanics data: refused, nothing written
         if not resume:
             claim_run_folder(out_dir, force)
         self.writer = RunWriter(out_dir)
@@ -92,16 +91,18 @@ class QuenchRun(QuenchModel):
         self.bar = RunProgress(f"{case.name}[{case.condition}]" if case.condition else case.name,
                                sum(st.duration_s for st in stages(case)), enabled=progress)
         self.bar.phase("meshing")
-        super().__init__(case, material, self.writer.mesh_path)
+        super().__init__(case, self.writer.mesh_path)
         self.timings = StageTimings()
-        self.counts: dict[str, Any] = {"steps": 0, "rejected": 0, "heat_out_J": 0.0, "latent_J": 0.0}
-        self.position: dict[str, Any] = {"stage": 0, "stage_end_s": None, "dt_s": case.time.dt_initial_s}
-        self.stress = None if self.mech is None else StressCoupling(
+        self.counts = StepCounts()
+        self.position = Position(dt_s=case.time.dt_initial_s)
+        self.as_quenched: dict[str, Any] | None = None   # the summary of the quenched state, kept when a temper follows
+        self.stress: StressCoupling | None = None if self.mech is None else StressCoupling(
             self.mech, self.thermal, self.phase_model, case.time.mechanics_max_dT_K, case.time.mechanics_max_dX,
             self.timings, self._count_stress_step)
         self.stop = StopRequest()
         self.restored = None if checkpoint is None else restore_run(self, *checkpoint)
         if self.restored is not None:
+            self.counts, self.position = self.restored.counts, self.restored.position
             log.warning("resuming %s from its checkpoint at t = %.6g s", self.out, self.thermal.time_s)
 
     def nodal_fields(self) -> dict[str, np.ndarray]:
@@ -115,8 +116,8 @@ class QuenchRun(QuenchModel):
         if self.restored is None:
             self.record.start(self.thermal.T, self.nodal_fields())
         else:  # the probe rows and frames up to the checkpoint, as the interrupted run wrote them
-            self.record.resume(self.restored["run"], self.restored["frames"])
-            self.wall0 -= self.restored["wall_time_s"]
+            self.record.resume(self.restored.record, self.restored.frames)
+            self.wall0 -= self.restored.wall_time_s
         status, error, end_state = self._march()
         self.bar.phase("output")
         self.writer.final_3d(final_frame(self))
@@ -174,20 +175,20 @@ class QuenchRun(QuenchModel):
         plan = stages(case)
         steps = step_controller(ctl)
         observer = QuenchObserver(self, self.bar)
-        for index in range(position["stage"], len(plan)):
+        for index in range(position.stage, len(plan)):
             stage = plan[index]
             if stage.duration_s <= 0.0:     # a stage the case leaves out (no transfer, no air cooling)
-                position["stage"] = index + 1
+                position.stage = index + 1
                 continue
             self.bar.phase(f"{stage.name}: boundary HTC")
             with self.timings("bath_htc_s"):
                 htc = stage_htc(case, stage.name, self.points)
-            if position["stage_end_s"] is None:  # the stage starts (not resumed within it)
+            if position.stage_end_s is None:  # the stage starts (not resumed within it)
                 if stage.name == "temper":
                     self._start_temper()
-                position["stage_end_s"] = self.thermal.time_s + stage.duration_s
+                position.stage_end_s = self.thermal.time_s + stage.duration_s
                 self.thermal.restart()
-            t_end = position["stage_end_s"]
+            t_end = position.stage_end_s
             tempering = stage.name in TEMPER_STAGES
             if not tempering:
                 observer.stage(stage, plan[index + 1:], htc, lambda name: stage_htc(case, name, self.points), t_end)
@@ -197,7 +198,7 @@ class QuenchRun(QuenchModel):
                     self._checkpoint()
                     last_checkpoint = time.perf_counter()
                     self.stop.check()
-                dt = min(position["dt_s"], t_end - self.thermal.time_s)
+                dt = min(position.dt_s, t_end - self.thermal.time_s)
                 try:
                     with self.timings("thermal_metallurgy_s"):
                         step = self.thermal.try_step(dt, htc)
@@ -205,13 +206,13 @@ class QuenchRun(QuenchModel):
                     if not steps.can_halve(dt):
                         raise
                     log.warning("%s; cutting the step to %.3g s", exc, dt / 2)
-                    position["dt_s"], counts["rejected"] = dt / 2, counts["rejected"] + 1
+                    position.dt_s, counts.rejected = dt / 2, counts.rejected + 1
                     continue
                 dX = max((step.max_dX_by_phase.get(p, 0.0) for p in self.phase_model.time_dependent_phases),
                          default=0.0)
                 limit = steps.ratio(step.max_dT_K, dX)
                 if steps.rejects(dt, limit):
-                    position["dt_s"], counts["rejected"] = dt / 2, counts["rejected"] + 1
+                    position.dt_s, counts.rejected = dt / 2, counts.rejected + 1
                     continue
                 converged = self.stress is None or self.stress.with_step(step)
                 if not converged:
@@ -220,26 +221,26 @@ class QuenchRun(QuenchModel):
                                           f"even with the smallest step {dt:.3g} s")
                     log.warning("stress Newton did not converge (dt = %.3g s at t = %.4g s); cutting the step",
                                 dt, self.thermal.time_s)
-                    position["dt_s"], counts["rejected"] = dt / 2, counts["rejected"] + 1
+                    position.dt_s, counts.rejected = dt / 2, counts.rejected + 1
                     continue
                 T_qp_before = self.thermal.T_qp
                 self.thermal.commit(step)
-                counts["steps"] += 1
-                counts["heat_out_J"] += step.heat_out_J
-                counts["latent_J"] += step.latent_J
+                counts.steps += 1
+                counts.heat_out_J += step.heat_out_J
+                counts.latent_J += step.latent_J
                 self.record.step(self.thermal.time_s, self.thermal.T)
                 if self.record.frame_due(self.thermal.T):
-                    self._mechanics_catch_up()
+                    self.catch_up_stresses()
                     with self.timings("output_s"):
                         self.record.frame(self.thermal.time_s, self.thermal.T, self.nodal_fields())
-                position["dt_s"] = steps.next_dt(dt, limit)
+                position.dt_s = steps.next_dt(dt, limit)
                 if tempering:
                     self.bar.update(self.thermal.time_s, min(self.thermal.time_s / self.bar.total_s, 0.999),
-                                    counts["steps"], 0.0)
+                                    counts.steps, 0.0)
                 else:
                     observer.step(dt, dX, step.max_dT_K, T_qp_before)
-            self._mechanics_catch_up()
-            position["stage"], position["stage_end_s"] = index + 1, None
+            self.catch_up_stresses()
+            position.stage, position.stage_end_s = index + 1, None
             self._checkpoint()
             last_checkpoint = time.perf_counter()
         self.bar.finish(self.thermal.time_s)
@@ -252,7 +253,7 @@ class QuenchRun(QuenchModel):
         from quenchsim.metallurgy.tempering import TemperingPhaseModel, relaxation_term, tempering_free_strain
         from quenchsim.results.assemble import state_summary
 
-        self._mechanics_catch_up()
+        self.catch_up_stresses()
         if float(np.max(self.thermal.T)) <= self.case.air.until_max_C + 1e-9:
             closing.close_at_room_temperature(self)
         else:
@@ -276,9 +277,9 @@ class QuenchRun(QuenchModel):
             save_run(self)
 
     def _count_stress_step(self) -> None:
-        self.counts["stress_steps"] = self.counts.get("stress_steps", 0) + 1
+        self.counts.stress_steps += 1
 
-    def _mechanics_catch_up(self) -> None:
+    def catch_up_stresses(self) -> None:
         """Bring the stresses to the committed thermal state (:meth:`StressCoupling.catch_up`)."""
         if self.stress is not None:
             self.stress.catch_up()

@@ -17,7 +17,7 @@ from quenchsim.errors import InputError
 from quenchsim.geometry import BoundaryPoints, SectionMesh, boundary_points, mesh_profile
 from quenchsim.geometry.profile import MM, Profile
 from quenchsim.fem import INTORDER
-from quenchsim.materials import load_material, thermal_properties, transforms
+from quenchsim.materials import thermal_properties
 from quenchsim.results.final_part import FinalPart
 from quenchsim.results.postprocess import NodalProjection
 from quenchsim.thermal import (AxisymmetricP2, HeatingHTC, ImmersionHTC, SurfaceTemperatureHTC, TableHTC,
@@ -38,7 +38,7 @@ class Section:
     mech_model: Any
 
 
-def build_section(case: Case, material: dict[str, Any], msh_path: Path) -> Section:
+def build_section(case: Case, msh_path: Path) -> Section:
     """Mesh the case's profile and move it to the austenitised geometry.
 
     The quench starts from the austenitised section whether or not the stress is solved; the "before"
@@ -47,15 +47,14 @@ def build_section(case: Case, material: dict[str, Any], msh_path: Path) -> Secti
     T_aust = case.process.austenitising_temperature_C
     section = mesh_profile(case.profile, case.mesh.size_mm * MM, case.mesh.surface_size_mm * MM,
                            case.mesh.surface_layer_mm * MM, msh_path=msh_path)
-    if "mechanics" not in material:
+    if case.steel.mechanics is None:
         return Section(section, section.mesh, case.profile, 1.0, None)
     solve_stress = case.mechanics.enabled
     # a thermal-only run needs the free strains (for the hot section) but no flow or TRIP data
-    options = dict(case.mechanics.solver_options) if solve_stress else {"plasticity": False, "trip": False}
-    mech_model = mechanics.load_mechanics(material, {**options, "austenitizing_T_C": T_aust})
+    mech_model = mechanics.load_mechanics(case.steel, case.mechanics.solver_options(T_aust))
     scale = mechanics.austenitized_scale(mech_model)
     mesh = section.mesh
-    if case.reference_state == "annealed":
+    if case.geometry.reference_state == "annealed":
         profile_before, profile, case_to_hot = case.profile, case.profile.scaled(scale), scale
         hot, before_mesh = skfem.MeshTri(mesh.p * scale, mesh.t), mesh
     else:
@@ -90,8 +89,9 @@ def stages(case: Case) -> list[Stage]:
     plan = [Stage("transfer", case.transfer.time_s), Stage("quench", case.quench.time_s),
             Stage("air", case.air.time_s, case.air.until_max_C)]
     if case.temper is not None:
-        plan += [Stage("temper", case.temper.time_s),
-                 Stage("temper_cool", case.temper.cool_time_s, case.temper.cool_until_max_C)]
+        cool_until_max_C = case.temper.cool_until_max_C
+        assert cool_until_max_C is not None   # the case sets it (default: the air stage's, Case.check)
+        plan += [Stage("temper", case.temper.time_s), Stage("temper_cool", case.temper.cool_time_s, cool_until_max_C)]
     return plan
 
 
@@ -114,37 +114,33 @@ def stage_htc(case: Case, stage: str, points: BoundaryPoints) -> Any:
         temper = case.temper
         assert temper is not None   # a temper stage exists only with a [temper] table
         if temper.htc_model == "table":
-            assert temper.htc_table is not None   # the "table" model carries its tables (case.parse._temper)
-            return parse_htc_table(dict(temper.htc_table), points.segment, "temper.htc_table")
+            assert temper.htc_table is not None   # the "table" model carries its tables (Temper.check)
+            return parse_htc_table(temper.htc_table, points.segment, "temper.htc_table")
         return HeatingHTC(SurfaceTemperatureHTC(bath.air_htc(points, temper.temperature_C, temper.emissivity)))
     if stage == "quench":
-        # the quench stage carries its htc_table with the "table" model, its bath otherwise (case.parse._quench)
+        # the quench stage carries its htc_table with the "table" model, the case its bath otherwise (Quench.check)
         oil: TableHTC | SurfaceTemperatureHTC
         if case.quench.htc_model == "table":
             assert case.quench.htc_table is not None
-            oil = parse_htc_table(dict(case.quench.htc_table), points.segment, "quench.htc_table")
+            oil = parse_htc_table(case.quench.htc_table, points.segment, "quench.htc_table")
         else:
-            assert case.quench.bath is not None
-            oil = SurfaceTemperatureHTC(bath.boundary_htc(case.quench.bath, points))
+            assert case.bath is not None
+            oil = SurfaceTemperatureHTC(bath.boundary_htc(case.bath, points))
         if case.quench.immersion_speed_mm_s is None:
             return oil
         return ImmersionHTC(oil, stage_htc(case, "transfer", points), points.z_m, points.extent.z_min_m,
                             case.quench.immersion_speed_mm_s * MM, case.transfer.time_s)
     if case.air.htc_model == "table":
-        assert case.air.htc_table is not None   # the "table" model carries its tables (case.parse._air)
-        return parse_htc_table(dict(case.air.htc_table), points.segment, "air.htc_table")
+        assert case.air.htc_table is not None   # the "table" model carries its tables (Air.check)
+        return parse_htc_table(case.air.htc_table, points.segment, "air.htc_table")
     return SurfaceTemperatureHTC(bath.air_htc(points, case.air.temperature_C, case.air.emissivity))
 
 
-def require_mechanics_data(case: Case, material: dict[str, Any] | None = None) -> None:
+def require_mechanics_data(case: Case) -> None:
     """Refuse a mechanics run of a steel that has no mechanics data, before any work: the run would compute no
     dimensions, distortion or stresses (a fitted steel, ``material = "path/NAME.toml"``, has none until
-    ``NAME.mechanics.toml`` is put beside it). A steel that does not transform is thermal only and passes.
-    ``material``: the case's material when loaded already."""
-    if not case.mechanics.enabled:
-        return
-    material = load_material(case.material) if material is None else material
-    if "mechanics" in material or not transforms(material):
+    ``NAME.mechanics.toml`` is put beside it). A steel that does not transform is thermal only and passes."""
+    if not case.mechanics.enabled or case.steel.mechanics is not None or not case.steel.transforms:
         return
     stem = Path(case.material).with_suffix("") if case.material.endswith(".toml") else Path(case.material)
     raise InputError("material", case.material, f"has no mechanics data ({stem.name}.mechanics.toml beside it or a "
@@ -157,24 +153,23 @@ class QuenchModel:
     the stress solver when the stress is solved (``mech``, None otherwise), the final part and the probes' reading
     matrix (their positions move with the section to the austenitised geometry)."""
 
-    def __init__(self, case: Case, material: dict[str, Any], mesh_path: Path) -> None:
-        """Mesh the case's section (written to ``mesh_path``) and build the solvers on it (``material``: the case's,
-        :func:`load_material`)."""
-        self.material = material
+    def __init__(self, case: Case, mesh_path: Path) -> None:
+        """Mesh the case's section (written to ``mesh_path``) and build the solvers on it from the case's steel."""
+        steel = case.steel
         self.T_aust = case.process.austenitising_temperature_C
         self.T_room = case.process.room_temperature_C
-        built = build_section(case, self.material, mesh_path)
+        built = build_section(case, mesh_path)
         self.section, self.before_mesh, self.profile_before = built.hot, built.before_mesh, built.profile_before
         self.profile, self.case_to_hot, self.mech_model = built.hot.profile, built.case_to_hot, built.mech_model
         cooled = np.concatenate([f for n, f in self.section.boundaries.items() if n != "axis"])
         self.fe = AxisymmetricP2(self.section.mesh, cooled, intorder=INTORDER)
         self.points = cooled_surface_points(self.fe, self.section)
-        self.kin = metallurgy.load_kinetics(self.material, self.T_aust) if transforms(self.material) else None
+        self.kin = metallurgy.load_kinetics(steel, self.T_aust) if steel.transforms else None
         self.tempering = (None if case.temper is None or self.kin is None
-                          else metallurgy.load_tempering(self.material, self.kin))
+                          else metallurgy.load_tempering(steel, self.kin))
         # the quench's phase model; a [temper] replaces it by the tempering one (pipeline.QuenchRun._start_temper)
         self.phase_model: Any = metallurgy.PhaseModel(self.kin)
-        self.thermal = ThermalSolver(self.fe, thermal_properties(self.material), self.T_aust, self.phase_model,
+        self.thermal = ThermalSolver(self.fe, thermal_properties(steel), self.T_aust, self.phase_model,
                                      self.phase_model.initial_state(self.fe.r_qp.shape))
         self.projection = NodalProjection(self.section.mesh, INTORDER)
         fixed = case.mechanics.fixed_point_mm

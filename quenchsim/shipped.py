@@ -9,11 +9,11 @@ resolved (the user's folders first, then this shipped data): :mod:`quenchsim.mat
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.reader import parse_toml
 
 PACKAGE = Path(__file__).resolve().parent
 
@@ -82,8 +82,8 @@ def shipped_cases() -> list[ShippedCase]:
     for path in sorted(shipped_dir("cases").glob("*.toml")):
         text = path.read_text()
         try:
-            data = tomllib.loads(text)
-        except tomllib.TOMLDecodeError:
+            data = parse_toml(text, str(path))
+        except InputError:
             continue
         description = data.get("description") or _first_comment(text)
         conditions = data.get("conditions", {})

@@ -43,7 +43,6 @@ import json
 import logging
 import re
 import time
-import tomllib
 import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -53,6 +52,9 @@ from tqdm import tqdm
 
 from quenchsim.case import case_from_dict
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.declare import from_table
+from quenchsim.inputs.reader import read_toml, reading
+from quenchsim.inputs.sweep import SweepFile
 from quenchsim.fingerprint import run_fingerprint
 from quenchsim.results import RunWriter, files, read_summary
 
@@ -122,23 +124,16 @@ def _has_parent(data: Mapping[str, Any], dotted: str) -> bool:
 
 
 def parse_sweep(raw: dict[str, Any], base_dir: Path, name: str = "sweep") -> SweepSpec:
-    """Build a :class:`SweepSpec` from a sweep table (as read from TOML); errors name the field."""
-    unknown = set(raw) - {"sweep", "set", "grid", "zip"}
-    require(not unknown, "sweep file", sorted(unknown), "allowed tables: [sweep], [set], [grid], [zip]")
-    head = raw.get("sweep", {})
-    require(isinstance(head, dict) and isinstance(head.get("case"), str), "sweep.case", head.get("case"),
-            "required: the base case file (relative to the sweep file)")
-    case_path = (base_dir / head["case"]).resolve()
-    require(case_path.is_file(), "sweep.case", head["case"], f"file not found ({case_path})")
-    with case_path.open("rb") as fh:
-        try:
-            raw_case = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError("sweep.case", head["case"], f"is not valid TOML ({exc})") from None
-    condition = head.get("condition")
-    return make_sweep(raw_case, grid=raw.get("grid", {}), zipped=raw.get("zip", {}), fixed=raw.get("set", {}),
-                      condition=None if condition is None else str(condition), case_path=case_path,
-                      name=str(head.get("name", name)))
+    """Build a :class:`SweepSpec` from a sweep table (as read from TOML, :class:`quenchsim.inputs.sweep.SweepFile`);
+    errors name the field."""
+    spec = from_table(SweepFile, raw)
+    head = spec.sweep
+    case_path = (base_dir / head.case).resolve()
+    require(case_path.is_file(), "sweep.case", head.case, f"file not found ({case_path})")
+    raw_case = read_toml(case_path, "sweep.case")
+    return make_sweep(raw_case, grid=dict(spec.grid), zipped=dict(spec.zip), fixed=dict(spec.set),
+                      condition=None if head.condition is None else str(head.condition), case_path=case_path,
+                      name=head.name if head.name is not None else name)
 
 
 def make_sweep(raw_case: dict[str, Any], grid: dict[str, Any] | None = None, zipped: dict[str, Any] | None = None,
@@ -167,11 +162,11 @@ def make_sweep(raw_case: dict[str, Any], grid: dict[str, Any] | None = None, zip
     zip_rows = [dict(zip(zip_flat, values)) for values in zip(*zip_flat.values())] or [{}]
     points = [{**dict(zip(grid_flat, combo)), **z} for combo in itertools.product(*grid_flat.values())
               for z in zip_rows]
-    for name, point in zip(case_names(parameters, points), points):   # every case is checked before any runs
+    for case_name, point in zip(case_names(parameters, points), points):   # every case is checked before any runs
         try:
             base.with_overrides(point)
         except InputError as exc:
-            raise InputError(f"sweep case {name}: {exc.field}", exc.value, exc.allowed) from None
+            raise InputError(f"sweep case {case_name}: {exc.field}", exc.value, exc.allowed) from None
     return SweepSpec(name=name, case_path=case_path, condition=condition, fixed=fixed_flat,
                      parameters=parameters, points=points, raw_case=raw_case)
 
@@ -179,13 +174,9 @@ def make_sweep(raw_case: dict[str, Any], grid: dict[str, Any] | None = None, zip
 def load_sweep(path: str | Path) -> SweepSpec:
     """Read a sweep file (see the module docstring)."""
     path = Path(path)
-    require(path.is_file(), "sweep", str(path), "file not found")
-    with path.open("rb") as fh:
-        try:
-            raw = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError("sweep", str(path), f"is not valid TOML ({exc})") from None
-    return parse_sweep(raw, path.parent, name=path.stem)
+    raw = read_toml(path, "sweep")
+    with reading(path):
+        return parse_sweep(raw, path.parent, name=path.stem)
 
 
 def _format_value(value: Any) -> str:

@@ -30,15 +30,17 @@ import math
 import re
 import shutil
 import time
-import tomllib
 import traceback
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from types import ModuleType
 from collections.abc import Callable
 from typing import Any
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.declare import from_table
+from quenchsim.inputs.reader import parse_toml, read_toml, reading
+from quenchsim.inputs.targets import Target, TargetsFile
 from quenchsim.fingerprint import code_fingerprint
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -46,115 +48,14 @@ VALIDATION_ROOT = ROOT / "validation"
 RUNS = Path("runs") / "validation"
 """Work folders of the studies (and the cached quench runs), relative to the working directory."""
 
-STATUSES = ("open", "reference")
-ROLES = ("validation", "calibration", "verification")
-FORMS = (("value", "tolerance"), ("value", "rel_tolerance"), ("min", "max"))
-
-
-# ----------------------------------------------------------------------------------------------- targets
-
-@dataclass(frozen=True)
-class Target:
-    """One published or measured value of a study, as written in its targets.toml."""
-
-    study: str
-    metric: str
-    source: str
-    unit: str = ""
-    value: float | None = None
-    tolerance: float | None = None
-    rel_tolerance: float | None = None
-    min: float | None = None
-    max: float | None = None
-    description: str = ""
-    status: str = ""
-    reason: str = ""
-    role: str = "validation"
-
-    def band(self) -> tuple[float, float] | None:
-        """The accepted interval, or None for a reference value."""
-        if self.value is not None and self.tolerance is not None:
-            return self.value - self.tolerance, self.value + self.tolerance
-        if self.value is not None and self.rel_tolerance is not None:
-            half = abs(self.value) * self.rel_tolerance
-            return self.value - half, self.value + half
-        if self.min is not None or self.max is not None:
-            return (-math.inf if self.min is None else self.min, math.inf if self.max is None else self.max)
-        return None
-
-    def describe(self) -> str:
-        """The target as printed on a page: ``0.75 +- 0.08``, ``218.3 +- 2 %``, ``>= 3``, ``60-90``."""
-        unit = f" {self.unit}" if self.unit else ""
-        if self.value is not None and self.tolerance is not None:
-            return f"{self.value:g} +- {self.tolerance:g}{unit}"
-        if self.value is not None and self.rel_tolerance is not None:
-            return f"{self.value:g}{unit} +- {100 * self.rel_tolerance:g} %"
-        if self.min is not None and self.max is not None:
-            return f"{self.min:g} to {self.max:g}{unit}"
-        if self.min is not None:
-            return f">= {self.min:g}{unit}"
-        if self.max is not None:
-            return f"<= {self.max:g}{unit}"
-        return f"{self.value:g}{unit}"
-
-
-def _number(table: dict[str, Any], key: str, where: str) -> float | None:
-    value = table.get(key)
-    if value is None:
-        return None
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise InputError(f"{where}.{key}", value, "must be a finite number")
-    return float(value)
-
-
 def load_targets(path: Path, study: str = "") -> list[Target]:
-    """Parse and check a targets.toml: every target names a metric and a non-empty source and has exactly
-    one form (value + tolerance | value + rel_tolerance | min and/or max), except ``status = "reference"``
-    (a value without tolerance); an open target says why."""
+    """The targets of a targets.toml (:class:`quenchsim.inputs.targets.Target`: every target names a metric and a
+    non-empty source and has exactly one form), read against their declaration; an error names the file."""
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text())
-    except (OSError, tomllib.TOMLDecodeError) as exc:
-        raise InputError(str(path), "", f"cannot read targets: {exc}") from exc
-    allowed = {f.name for f in Target.__dataclass_fields__.values()} - {"study"}
-    unknown_top = set(data) - {"targets"}
-    if unknown_top:
-        raise InputError(str(path), sorted(unknown_top), "only [[targets]] tables are allowed")
-    out = []
-    for i, t in enumerate(data.get("targets", [])):
-        where = f"{path}: targets[{i}]"
-        extra = set(t) - allowed
-        if extra:
-            raise InputError(where, sorted(extra), f"unknown keys; allowed: {', '.join(sorted(allowed))}")
-        if not isinstance(t.get("metric"), str) or not t["metric"]:
-            raise InputError(f"{where}.metric", t.get("metric"), "must name a metric the study returns")
-        if not isinstance(t.get("source"), str) or not t["source"].strip():
-            raise InputError(f"{where}.source", t.get("source"), "every target needs a non-empty source")
-        status = t.get("status", "")
-        if status and status not in STATUSES:
-            raise InputError(f"{where}.status", status, f"one of {', '.join(STATUSES)} (or absent)")
-        if status == "open" and not str(t.get("reason", "")).strip():
-            raise InputError(f"{where}.reason", t.get("reason"), "an open target says why it is open")
-        role = t.get("role", "validation")
-        if role not in ROLES:
-            raise InputError(f"{where}.role", role, f"one of {', '.join(ROLES)}")
-        nums = {k: _number(t, k, where) for k in ("value", "tolerance", "rel_tolerance", "min", "max")}
-        given = {k for k, v in nums.items() if v is not None}
-        forms = [f for f in FORMS if set(f) <= given] + ([("min",)] if given == {"min"} else []) \
-            + ([("max",)] if given == {"max"} else [])
-        if status == "reference":
-            if given != {"value"}:
-                raise InputError(where, sorted(given), "a reference target has a value and no tolerance")
-        elif len(forms) != 1 or given != set(forms[0]):
-            raise InputError(where, sorted(given), "give value + tolerance, value + rel_tolerance, or min/max")
-        for k in ("tolerance", "rel_tolerance"):
-            bound = nums[k]
-            if bound is not None and bound < 0:
-                raise InputError(f"{where}.{k}", bound, "must be >= 0")
-        out.append(Target(study=study, metric=t["metric"], source=t["source"].strip(), unit=t.get("unit", ""),
-                          description=t.get("description", ""), status=status, reason=t.get("reason", ""),
-                          role=role, **nums))
-    return out
+    data = read_toml(path, "targets")
+    with reading(path):
+        targets = from_table(TargetsFile, data).targets
+    return [replace(t, source=t.source.strip(), study=study) for t in targets]
 
 
 def study_targets(study_file: str | Path) -> dict[str, Target]:
@@ -450,7 +351,7 @@ def cached_run(case: Any, run_dir: Path) -> Path:
     done, stamp = run_dir / files.SUMMARY_JSON, run_dir / "code_fingerprint.txt"
     fingerprint = code_fingerprint()
     if done.is_file() and (run_dir / files.CASE_TOML).is_file() and stamp.is_file():
-        same = tomllib.loads((run_dir / files.CASE_TOML).read_text()) == tomllib.loads(_toml(case))
+        same = read_toml(run_dir / files.CASE_TOML) == parse_toml(_toml(case), "case")
         if same and stamp.read_text() == fingerprint and json.loads(done.read_text()).get("status") == "ok":
             return run_dir
     stamp.unlink(missing_ok=True)

@@ -1,16 +1,27 @@
-"""Hot-austenite flow laws (quenchsim.materials.austenite_flow) against their printed forms, and the shipped
-austenite yield rows against the data file they are computed from."""
+"""Hot-austenite flow laws (dev/austenite_flow.py, the maintainers' tool that computes the steels' austenite yield
+rows) against their printed forms, and the shipped austenite yield rows against the data file they are computed
+from."""
 
 from __future__ import annotations
 
+import importlib.util
 import math
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from quenchsim.materials import load_material
-from quenchsim.materials.austenite_flow import (R_J_molK, austenite_yield_table, kozlowski_III_stress_MPa,
-                                                load_data, zener_hollomon_peak_stress_MPa)
+
+_TOOL = Path(__file__).resolve().parents[1] / "dev" / "austenite_flow.py"
+_spec = importlib.util.spec_from_file_location("dev_austenite_flow", _TOOL)
+_flow = importlib.util.module_from_spec(_spec)
+sys.modules[_spec.name] = _flow   # its dataclasses look their module up
+_spec.loader.exec_module(_flow)
+R_J_molK, austenite_yield_table, kozlowski_III_stress_MPa = (_flow.R_J_molK, _flow.austenite_yield_table,
+                                                            _flow.kozlowski_III_stress_MPa)
+load_data, zener_hollomon_peak_stress_MPa = _flow.load_data, _flow.zener_hollomon_peak_stress_MPa
 
 HUO = dict(A_1_s=1.0e18, alpha_1_MPa=0.0083, n=5.78, Q_J_mol=481363.0)
 

@@ -70,8 +70,8 @@ def test_calibration_addresses_bath_files_and_a_scaled_file_moves_the_htc(tmp_pa
     overrides = derived_files([inp], [inp.factor_bounds[1]], tmp_path)
     assert set(overrides) == {field}
     moved = load_case(CASE_A, "1", overrides)
-    base_htc = boundary_htc(case.quench.bath, POINTS)
-    new_htc = boundary_htc(moved.quench.bath, POINTS)
+    base_htc = boundary_htc(case.bath, POINTS)
+    new_htc = boundary_htc(moved.bath, POINTS)
     assert not np.allclose(base_htc.h_W_m2K, new_htc.h_W_m2K)
 
 

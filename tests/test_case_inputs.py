@@ -149,9 +149,9 @@ def test_negative_numbers_in_case_fields():
     ({"colling": 1}, "colling = 1: unknown table or key"),
     ({"time.dt_min_s": 500.0}, "time.dt_min_s = 500.0: must not exceed time.dt_max_s"),
     ({"air.emissivity": 1.5}, "air.emissivity = 1.5: must be <= 1"),
-    ({"mechanics.plastisity": False}, "mechanics.plastisity = False: unknown key; [mechanics] takes enabled"),
+    ({"mechanics.plastisity": False}, "mechanics.plastisity = False: unknown key; [mechanics] takes plasticity"),
     ({"mechanics.plasticity": "yes"}, "mechanics.plasticity = 'yes': must be true or false"),
-    ({"mechanics.newton_rtol": 5}, "mechanics.newton_rtol = 5: must be a number in [1e-14, 0.01]"),
+    ({"mechanics.newton_rtol": 5}, "mechanics.newton_rtol = 5: must be <= 0.01"),
     ({"quench.bath.od_jet_sped_mm_s": 8000}, "quench.bath.od_jet_sped_mm_s = 8000: unknown key; [quench.bath] takes"),
     ({"quench.bath.layout": None, "quench.bath.nozzles": {"od_a": {"diameter_mm": 10.0, "cont": 12}}},
      "quench.bath.nozzles.od_a.cont = 12: unknown key; [quench.bath.nozzles.od_a] takes side, diameter_mm"),
@@ -198,7 +198,7 @@ def test_a_failed_check_writes_nothing_and_an_unwritable_out_is_one_line(tmp_pat
     (["output.checkpoint_minutes=-1"], "output.checkpoint_minutes = -1: must be >= 0"),
     (["quench.bath.od_jet_sped_mm_s=8000"], "quench.bath.od_jet_sped_mm_s = 8000: unknown key; [quench.bath] takes"),
     (['mechanics.plasticity="yes"'], "mechanics.plasticity = 'yes': must be true or false"),
-    (["mechanics.newton_rtol=5"], "mechanics.newton_rtol = 5: must be a number in [1e-14, 0.01]"),
+    (["mechanics.newton_rtol=5"], "mechanics.newton_rtol = 5: must be <= 0.01"),
 ])
 def test_each_absurd_input_from_the_command_line_is_one_line_and_writes_nothing(tmp_path, capsys, sets, message):
     """The absurd inputs of issue 20 through `quenchsim run`: exit 2, one line naming the field, the value and what

@@ -47,7 +47,7 @@ def test_a_progress_bar_edit_leaves_every_study_fresh_and_a_bath_edit_only_the_b
     edit(checkout / "quenchsim" / "bath" / "config.py", "\n", "\n# a comment\n")
     edit(checkout / "quenchsim" / "bath" / "config.py", "def load_constants(name: str,", "def load_constants(name: object,")
     assert fingerprints(checkout) == before
-    edit(checkout / "quenchsim" / "bath" / "config.py", "MAX_ROTATION_RPM = 600.0", "MAX_ROTATION_RPM = 601.0")
+    edit(checkout / "quenchsim" / "inputs" / "bath.py", "MAX_ROTATION_RPM = 600.0", "MAX_ROTATION_RPM = 601.0")
     after = fingerprints(checkout)
     bearings = [k for k in before if k.startswith("bearings/")]
     quench = ["quench/ring_a", "quench/ring_b", "quench/convergence", "quench/peer_race", "bath/model",
@@ -174,7 +174,7 @@ def test_a_cached_run_counts_by_the_code_a_run_executes(checkout):
     edit(checkout / "quenchsim" / "calibration" / "conflicts.py", "LOCAL_STARTS = 4", "LOCAL_STARTS = 5")
     run1, code1 = both()
     assert run1 == run0 and code1 != code0
-    edit(checkout / "quenchsim" / "bath" / "config.py", "MAX_ROTATION_RPM = 601.0", "MAX_ROTATION_RPM = 602.0")
+    edit(checkout / "quenchsim" / "inputs" / "bath.py", "MAX_ROTATION_RPM = 601.0", "MAX_ROTATION_RPM = 602.0")
     run2, code2 = both()
     assert run2 != run1 and code2 != code1
     edit(checkout / "materials" / "baths" / "jet_bath.toml", "value = 0.3,", "value = 0.31,")

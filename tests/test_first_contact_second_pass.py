@@ -137,7 +137,7 @@ def test_a_truncated_case_file_is_named_as_such_not_as_a_missing_condition(tmp_p
 def test_a_misspelt_table_is_named_with_the_table_it_was_meant_to_be(tmp_path, capsys):
     case = _case_with(tmp_path, "[process]", "[proces]")
     err = _one_line_error(capsys, ["run", str(case), "--condition", "1", "--out", str(tmp_path / "run")])
-    assert err.startswith("quenchsim: error: proces = ") and "did you mean process?" in err
+    assert err.startswith(f"quenchsim: error: {case}: proces = ") and "did you mean process?" in err
 
 
 def test_a_probe_curve_in_kelvin_is_refused_with_a_hint_to_give_degrees_c(tmp_path, capsys, monkeypatch):
@@ -483,7 +483,7 @@ def test_the_seed_systems_note_names_the_verbs_they_were_built_as():
 
 
 def test_the_readmes_test_suite_figure_is_this_suites_and_names_benchs_as_older():
-    """The README's test-time figure and reports/bench.md's "710 tests in 218 s" disagreed without a word."""
+    """The README's test-time figure and docs/experiments/bench.md's "710 tests in 218 s" disagreed without a word."""
     import subprocess
     import sys
 
@@ -493,5 +493,5 @@ def test_the_readmes_test_suite_figure_is_this_suites_and_names_benchs_as_older(
                                cwd=ROOT, capture_output=True, text=True, timeout=300).stdout
     count = int(re.search(r"(\d+)(?:/\d+)? tests collected", collected).group(1))
     assert abs(count - stated) <= 0.15 * count, (count, stated)
-    bench = re.search(r"(\d+) tests in (\d+) s", (ROOT / "reports" / "bench.md").read_text())
+    bench = re.search(r"(\d+) tests in (\d+) s", (ROOT / "docs" / "experiments" / "bench.md").read_text())
     assert f"{bench.group(1)} tests in {bench.group(2)} s were an earlier" in " ".join(readme.split())

@@ -37,7 +37,7 @@ def recorded_run(case, out, clock=time.process_time, update_every_s=UPDATE_EVERY
     every ``update_every_s`` of it."""
     run = QuenchRun(case, out, progress=False)
     if clock == "steps":
-        run.bar = ThermalStepProgress(case.name, 1.0, enabled=False, clock=lambda: float(run.counts["steps"]))
+        run.bar = ThermalStepProgress(case.name, 1.0, enabled=False, clock=lambda: float(run.counts.steps))
     else:
         run.bar = RunProgress(case.name, 1.0, enabled=False, clock=clock, update_every_s=update_every_s)
     run.run()

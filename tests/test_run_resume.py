@@ -233,9 +233,9 @@ def test_a_second_ctrl_c_while_the_stresses_catch_up_still_leaves_a_summary(tmp_
             raise KeyboardInterrupt
         return catch_up(self)
 
-    commit, catch_up = ThermalSolver.commit, pipeline.QuenchRun._mechanics_catch_up
+    commit, catch_up = ThermalSolver.commit, pipeline.QuenchRun.catch_up_stresses
     monkeypatch.setattr(ThermalSolver, "commit", stop_after_a_second)
-    monkeypatch.setattr(pipeline.QuenchRun, "_mechanics_catch_up", catch_up_interrupted)
+    monkeypatch.setattr(pipeline.QuenchRun, "catch_up_stresses", catch_up_interrupted)
     with pytest.raises(RunInterrupted, match="--resume"):
         qs.run(case_from_dict(plastic_ring()), tmp_path / "run", progress=False)
     stopped = json.loads((tmp_path / "run" / files.SUMMARY_JSON).read_text())

@@ -17,8 +17,12 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq
 
-from quenchsim.errors import InputError, require
-from quenchsim.materials import load_data_file, materials_dir
+from quenchsim.errors import InputError
+from quenchsim.inputs.declare import declared_fields
+from quenchsim.inputs.quenchant import (BoilingProperties, GasQuenchant, LiquidProperties, LiquidQuenchant,
+                                        Quenchant, StillBathCurve, read_quenchant)
+from quenchsim.inputs.reader import read_toml
+from quenchsim.materials import find_data_file, materials_dir
 
 KELVIN = 273.15
 GAS_CONSTANT = 8.314462618  # J/(mol K), CODATA 2018
@@ -62,14 +66,6 @@ def fit_vogel(T_C: np.ndarray, mu_Pa_s: np.ndarray, field: str) -> Vogel:
     C = brentq(residual, lo, hi, xtol=1e-10)
     B = (y[0] - y[1]) / (1.0 / (T[0] - C) - 1.0 / (T[1] - C))
     return Vogel(A=float(y[0] - B / (T[0] - C)), B_K=float(B), C_K=float(C))
-
-
-def _value(table: dict[str, Any], key: str, field: str) -> float:
-    spec = table.get(key)
-    value = spec.get("value") if isinstance(spec, dict) else spec
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise InputError(f"{field}.{key}", value, "is required (a number or {value, source})")
-    return float(value)
 
 
 @dataclass(frozen=True)
@@ -138,42 +134,34 @@ class GasProperties:
         return 1.0 / (np.asarray(T_C, dtype=float) + KELVIN)
 
 
-_OIL_LIQUID = ("density_kg_m3", "specific_heat_J_kgK", "conductivity_W_mK", "expansion_1_K")
-_OIL_BOILING = ("boiling_point_C", "molar_mass_kg_mol", "latent_heat_J_kg", "surface_tension_N_m",
-                "vapour_conductivity_W_mK", "vapour_viscosity_Pa_s", "vapour_specific_heat_J_kgK", "zuber_K",
-                "ivey_morris_C", "rohsenow_n", "rohsenow_Csf", "leidenfrost_still_C",
-                "film_collapse_resistance_m2K_W", "transition_min_width_K", "bromley_C", "film_forced_C",
-                "surface_emissivity")
+def _quenchant(name: str, field: str) -> Quenchant:
+    """The quenchant file ``name`` (quenchants/NAME.toml on the search path, or a path), read against its kind."""
+    return read_quenchant(find_data_file(name, "quenchants", field), field)
 
 
 def load_oil(name: str, field: str = "quench.bath.quenchant") -> OilProperties:
     """Load a boiling liquid quenchant ``materials/quenchants/NAME.toml``; errors name ``field``."""
-    data = load_data_file(name, subdir="quenchants", field=field)
-    if data.get("kind") != "liquid":
-        raise InputError(field, name, f"is a {data.get('kind', 'untyped')} quenchant; a liquid (oil) is needed here")
-    liquid, boiling = data.get("liquid", {}), data.get("boiling", {})
-    visc = liquid.get("viscosity_Pa_s", {})
-    if not isinstance(visc, dict) or "T_C" not in visc or "value" not in visc:
-        raise InputError(f"{name}.liquid.viscosity_Pa_s", visc, "needs a table {T_C = [...], value = [...]}")
-    values = {key: _value(liquid, key, f"{name}.liquid") for key in _OIL_LIQUID}
-    values.update({key: _value(boiling, key, f"{name}.boiling") for key in _OIL_BOILING})
-    return OilProperties(name=name, viscosity=fit_vogel(visc["T_C"], visc["value"], f"{name}.liquid.viscosity_Pa_s"),
-                         **values)
+    data = _quenchant(name, field)
+    if not isinstance(data, LiquidQuenchant):
+        raise InputError(field, name, f"is a {data.kind} quenchant; a liquid (oil) is needed here")
+    liquid, boiling = data.liquid, data.boiling
+    visc = liquid.viscosity_Pa_s
+    values = {f.name: getattr(liquid, f.name) for f in declared_fields(LiquidProperties) if f.name != "viscosity_Pa_s"}
+    values.update({f.name: getattr(boiling, f.name) for f in declared_fields(BoilingProperties)})
+    return OilProperties(name=name, viscosity=fit_vogel(np.asarray(visc.T_C), np.asarray(visc.value),
+                                                        f"{name}.liquid.viscosity_Pa_s"), **values)
 
 
 def load_gas(name: str, field: str = "air") -> GasProperties:
     """Load a gas quenchant ``materials/quenchants/NAME.toml`` (``kind = "gas"``)."""
-    data = load_data_file(name, subdir="quenchants", field=field)
-    if data.get("kind") != "gas":
+    data = _quenchant(name, field)
+    if not isinstance(data, GasQuenchant):
         raise InputError(field, name, "is not a gas quenchant file (kind = \"gas\")")
-    gas = data.get("gas", {})
-    try:
-        return GasProperties(name=name, T_C=np.asarray(gas["T_C"], float),
-                             conductivity_W_mK=np.asarray(gas["conductivity_W_mK"], float),
-                             kinematic_viscosity_m2_s=np.asarray(gas["kinematic_viscosity_m2_s"], float),
-                             prandtl_table=np.asarray(gas["prandtl"], float))
-    except KeyError as exc:
-        raise InputError(f"{name}.gas.{exc.args[0]}", None, "is required") from None
+    gas = data.gas
+    return GasProperties(name=name, T_C=np.asarray(gas.T_C, float),
+                         conductivity_W_mK=np.asarray(gas.conductivity_W_mK, float),
+                         kinematic_viscosity_m2_s=np.asarray(gas.kinematic_viscosity_m2_s, float),
+                         prandtl_table=np.asarray(gas.prandtl, float))
 
 
 # --- still-bath curves: h(T_surface) measured on the ISO 9950 probe (written by `quenchsim quenchant`) -----------
@@ -205,36 +193,22 @@ def load_probe_quenchant(path_or_name: str | Path, field: str = "quenchant") -> 
     """Load a still-bath curve ``materials/quenchants/NAME.toml`` (or a path ending in .toml) written by
     ``quenchsim quenchant fit`` / ``from-datasheet``; errors name ``field``."""
     name = str(path_or_name)
-    data = load_data_file(name, "quenchants", field)
-    stem = Path(name).stem
-    if data.get("kind") != STILL_BATH_KIND:
-        raise InputError(field, name, f"is a {data.get('kind', 'untyped')} quenchant file; a still-bath curve "
+    data = _quenchant(name, field)
+    if not isinstance(data, StillBathCurve):
+        raise InputError(field, name, f"is a {data.kind} quenchant file; a still-bath curve "
                                       f"(kind = \"{STILL_BATH_KIND}\", from `quenchsim quenchant fit`) is needed")
-    htc, test = data.get("htc", {}), data.get("test", {})
-    T = np.asarray(htc.get("T_C", []), dtype=float)
-    h = np.asarray(htc.get("h_W_m2K", []), dtype=float)
-    require(T.size >= 2 and bool(np.all(np.diff(T) > 0)), f"{stem}.htc.T_C", htc.get("T_C"),
-            "needs >= 2 strictly increasing temperatures")
-    require(h.shape == T.shape and bool(np.all(h > 0)), f"{stem}.htc.h_W_m2K", htc.get("h_W_m2K"),
-            f"needs {T.size} positive values (one per T_C)")
-    for key in ("bath_temperature_C", "agitation_m_s"):
-        value = test.get(key)
-        require(isinstance(value, (int, float)) and not isinstance(value, bool), f"{stem}.test.{key}", value,
-                "is required (a number)")
-    lo, hi = htc.get("identified_T_C", [T[0], T[-1]])
-    return ProbeQuenchant(name=str(data.get("name", stem)), T_C=T, h_W_m2K=h,
-                          bath_temperature_C=float(test["bath_temperature_C"]),
-                          agitation_m_s=float(test["agitation_m_s"]), identified_C=(float(lo), float(hi)),
-                          method=str(htc.get("method", "")), source=str(data.get("source", "")))
+    htc, test = data.htc, data.test
+    T, h = np.asarray(htc.T_C, dtype=float), np.asarray(htc.h_W_m2K, dtype=float)
+    lo, hi = htc.identified_T_C if htc.identified_T_C is not None else (T[0], T[-1])
+    return ProbeQuenchant(name=data.name or Path(name).stem, T_C=T, h_W_m2K=h,
+                          bath_temperature_C=test.bath_temperature_C, agitation_m_s=test.agitation_m_s,
+                          identified_C=(float(lo), float(hi)), method=htc.method, source=data.source)
 
 
 def library() -> list[str]:
     """Names of the still-bath curves shipped in materials/quenchants/."""
-    import tomllib
-
     names = []
     for p in sorted((materials_dir() / "quenchants").glob("*.toml")):
-        with p.open("rb") as fh:
-            if tomllib.load(fh).get("kind") == STILL_BATH_KIND:
-                names.append(p.stem)
+        if read_toml(p, "quenchant").get("kind") == STILL_BATH_KIND:
+            names.append(p.stem)
     return names

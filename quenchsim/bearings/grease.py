@@ -23,15 +23,14 @@ from __future__ import annotations
 
 import functools
 import math
-import tomllib
 from dataclasses import dataclass
-from importlib import resources
 from typing import Any
 
 import numpy as np
 
 from quenchsim.bearings import kinematics as kin
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.reader import read_package_toml
 
 
 @dataclass(frozen=True)
@@ -49,8 +48,7 @@ class GreaseLife:
 @functools.cache
 def grease_data() -> dict[str, Any]:
     """The coefficient table ``data/grease_life.toml`` (parsed once)."""
-    text = resources.files("quenchsim.bearings").joinpath("data/grease_life.toml").read_text("utf-8")
-    return tomllib.loads(text)
+    return read_package_toml("quenchsim.bearings", "data/grease_life.toml")
 
 
 def grease_types() -> list[str]:

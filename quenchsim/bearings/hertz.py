@@ -37,15 +37,14 @@ from __future__ import annotations
 
 import functools
 import math
-import tomllib
 from dataclasses import dataclass
-from importlib import resources
 from typing import Any
 
 from scipy.optimize import brentq
 from scipy.special import ellipe, ellipkm1
 
 from quenchsim.errors import require
+from quenchsim.inputs.reader import read_package_toml
 
 # Below this value of (R_major/R_minor - 1) the exact ratio equation suffers cancellation
 # (K - E ~ pi m / 4); the first-order expansion k = 1 + 2/3 (ratio - 1) is exact to O(1e-12) there.
@@ -110,15 +109,13 @@ class _EllipseShape:
 def reference_data() -> dict[str, Any]:
     """Published numbers for checks (data/hertz_reference.toml): the Timoshenko-Goodier table of the
     ellipse coefficients m, n and the roller-clutch line contacts of reference sec. 7."""
-    text = resources.files("quenchsim.bearings").joinpath("data/hertz_reference.toml").read_text("utf-8")
-    return tomllib.loads(text)
+    return read_package_toml("quenchsim.bearings", "data/hertz_reference.toml")
 
 
 @functools.lru_cache(maxsize=1)
 def iso76_limits() -> dict[str, Any]:
     """The ISO 76 contact-stress limits (data/iso76_static_limits.toml, with its ``source``)."""
-    return tomllib.loads(resources.files("quenchsim.bearings").joinpath("data/iso76_static_limits.toml")
-                         .read_text("utf-8"))
+    return read_package_toml("quenchsim.bearings", "data/iso76_static_limits.toml")
 
 
 ISO76_KINDS = ("roller", "ball", "self_aligning_ball")

@@ -21,11 +21,10 @@ from __future__ import annotations
 import functools
 import math
 import numbers
-import tomllib
 from dataclasses import dataclass
-from importlib import resources
 
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.reader import read_package_toml
 
 
 @dataclass(frozen=True)
@@ -119,8 +118,7 @@ def roller_slip_ratio_pct(measured_cage_speed: float, theoretical_cage_speed: fl
 
 
 def _load_table() -> dict[str, BearingData]:
-    text = resources.files("quenchsim.bearings").joinpath("data/deep_groove_bearings.toml").read_text("utf-8")
-    table = tomllib.loads(text)
+    table = read_package_toml("quenchsim.bearings", "data/deep_groove_bearings.toml")
     out: dict[str, BearingData] = {}
     for name, row in table["bearing"].items():
         out[name] = BearingData(
@@ -142,8 +140,8 @@ def bearing_names() -> list[str]:
 def steel_properties() -> dict[str, float]:
     """Bearing steel (100Cr6 / AISI 52100): density_kg_m3, youngs_modulus_Pa, poisson, from
     data/bearing_steel.toml (sources in that file)."""
-    text = resources.files("quenchsim.bearings").joinpath("data/bearing_steel.toml").read_text("utf-8")
-    return {k: v for k, v in tomllib.loads(text)["steel"].items() if k != "source"}
+    steel = read_package_toml("quenchsim.bearings", "data/bearing_steel.toml")["steel"]
+    return {k: v for k, v in steel.items() if k != "source"}
 
 
 @functools.cache

@@ -45,27 +45,18 @@ from typing import Any
 import numpy as np
 
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.calibration import (BoundDatum, CurveDatum, DepthDatum, Measured, OrderDatum, RelatedDatum,
+                                          TraverseDatum, ValueDatum)
 from quenchsim.results.postprocess import time_to_temperature
 from quenchsim.results.summary import PROBE_TEMPERATURES_C
 
 KINDS = ("value", "bound", "order", "curve", "depth", "traverse")
-RELATIONS = ("ratio", "difference")
-TRAVERSE_SIDES = ("bore", "od")
 MEASURABLE_TABLES = ("probes", "hardness", "phases_final", "dimensions_mm", "distortion_budget_mm",
                      "residual_stress_MPa")
 """The tables of summary.json that hold measurable results (probe times, phases and hardness, hardness depths,
 phase fractions, dimensions, residual stresses). A path into them is checked again against the first finished run."""
 TRAVERSE_PREFIX = "traverse."
 """An observable path ``traverse.<side>@<depth_mm>``: the HRC at that depth of the run's hardness_traverse.csv."""
-COMMON_KEYS = ("kind", "case", "condition", "source", "group")
-KIND_KEYS = {"value": ("quantity", "value", "uncertainty", "relative_to", "relation"),
-             "bound": ("quantity", "min", "max", "uncertainty", "relative_to", "relation"),
-             "order": ("quantity", "probes", "tolerance"),
-             "curve": ("file", "probes", "temperatures_C", "uncertainty_K"),
-             "depth": ("side", "hardness_HRC", "value", "tolerance", "uncertainty"),
-             "traverse": ("file", "side", "uncertainty")}
-
-
 @dataclass(frozen=True)
 class Term:
     """One number of one run: the run's case label and condition, and the path of the number (a dotted path of
@@ -157,16 +148,6 @@ class Measurement:
     uncertainty: float | None = None
 
 
-def _number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
-
-
-def _positive(raw: Mapping[str, Any], key: str, where: str, what: str) -> float:
-    require(key in raw, f"{where}.{key}", None, f"required: {what}")
-    require(_number(raw[key]) and raw[key] > 0, f"{where}.{key}", raw[key], f"must be a number > 0 ({what})")
-    return float(raw[key])
-
-
 def check_quantity(quantity: Any, where: str) -> str:
     """A dotted path of summary.json under one of :data:`MEASURABLE_TABLES`."""
     require(isinstance(quantity, str) and "." in quantity and quantity.split(".")[0] in MEASURABLE_TABLES,
@@ -206,54 +187,43 @@ def read_columns(path: Path, where: str, required: tuple[str, ...]) -> dict[str,
     return {h: np.array(v) for h, v in data.items()}
 
 
-def _relation(raw: Mapping[str, Any], where: str, condition: str | None) -> tuple[str, str | None]:
-    if "relative_to" not in raw:
-        require("relation" not in raw, f"{where}.relation", raw.get("relation"), "needs relative_to = CONDITION")
+def _relation(datum: RelatedDatum, where: str, condition: str | None) -> tuple[str, str | None]:
+    if datum.relative_to is None:
         return "value", None
-    other = str(raw["relative_to"])
+    other = str(datum.relative_to)
     require(other != condition, f"{where}.relative_to", other, "must be another condition than the datum's own")
-    relation = raw.get("relation")
-    require(relation in RELATIONS, f"{where}.relation", relation, f"must be one of {', '.join(RELATIONS)}")
-    return str(relation), other
+    return str(datum.relation), other
 
 
-def _scalar(kind: str, raw: Mapping[str, Any], where: str, case: str, condition: str | None, group: str | None
+def _scalar(datum: ValueDatum | BoundDatum, where: str, case: str, condition: str | None, group: str | None
             ) -> tuple[str, Observable, str]:
-    quantity = check_quantity(raw.get("quantity"), where)
-    relation, other = _relation(raw, where, condition)
+    quantity = check_quantity(datum.quantity, where)
+    relation, other = _relation(datum, where, condition)
     terms = (Term(case, condition, quantity),) + ((Term(case, other, quantity),) if other is not None else ())
-    sd = _positive(raw, "uncertainty", where, "one standard deviation, in the quantity's unit")
+    sd = datum.uncertainty
     symbol = {"value": "", "ratio": f" / condition {other}", "difference": f" - condition {other}"}[relation]
     label = f"{case}/{condition or '-'}:{quantity}{symbol}"
     group = group or default_group(quantity) + ("" if relation == "value" else f"_{relation}")
-    if kind == "value":
-        require(_number(raw.get("value")), f"{where}.value", raw.get("value"), "required: the measured number")
-        return label, Observable(label, terms, relation, value=float(raw["value"]), sd=sd, group=group), quantity
-    lower, upper = raw.get("min"), raw.get("max")
-    require(lower is not None or upper is not None, f"{where}.min", None, "a bound needs min and/or max")
-    for key, v in (("min", lower), ("max", upper)):
-        require(v is None or _number(v), f"{where}.{key}", v, "must be a number")
-    require(lower is None or upper is None or lower < upper, f"{where}.max", upper, f"must exceed min = {lower}")
-    return label, Observable(label, terms, relation, lower=None if lower is None else float(lower),
-                             upper=None if upper is None else float(upper), sd=sd, group=group), quantity
+    if isinstance(datum, ValueDatum):
+        return label, Observable(label, terms, relation, value=datum.value, sd=sd, group=group), quantity
+    return label, Observable(label, terms, relation, lower=datum.min, upper=datum.max, sd=sd, group=group), quantity
 
 
-def _probe_names(raw: Any, where: str, probes: tuple[str, ...], minimum: int) -> list[str]:
-    require(isinstance(raw, list) and len(raw) >= minimum and all(isinstance(p, str) for p in raw), f"{where}.probes",
-            raw, f"must be a list of at least {minimum} probe names")
-    unknown = [p for p in raw if p not in probes]
+def _probe_names(names: tuple[str, ...], where: str, probes: tuple[str, ...], minimum: int) -> list[str]:
+    require(len(names) >= minimum, f"{where}.probes", list(names), f"must be a list of at least {minimum} probe names")
+    unknown = [p for p in names if p not in probes]
     require(not unknown, f"{where}.probes", unknown, f"not probes of the case; its probes: {', '.join(probes) or 'none'}")
-    require(len(set(raw)) == len(raw), f"{where}.probes", raw, "each probe may appear once")
-    return list(raw)
+    require(len(set(names)) == len(names), f"{where}.probes", list(names), "each probe may appear once")
+    return list(names)
 
 
-def _order(raw: Mapping[str, Any], where: str, case: str, condition: str | None, group: str | None,
+def _order(datum: OrderDatum, where: str, case: str, condition: str | None, group: str | None,
            probes: tuple[str, ...]) -> tuple[str, tuple[Observable, ...]]:
-    q = raw.get("quantity")
-    require(isinstance(q, str) and q and not q.startswith("probes."), f"{where}.quantity", q,
+    q = datum.quantity
+    require(q != "" and not q.startswith("probes."), f"{where}.quantity", q,
             "must be a probe quantity such as t_to_500C_s or t_to_C_s.600 (without probes.NAME.)")
-    names = _probe_names(raw.get("probes"), where, probes, 2)
-    tol = _positive(raw, "tolerance", where, "the standard deviation of each measured difference")
+    names = _probe_names(datum.probes, where, probes, 2)
+    tol = datum.tolerance
     out = []
     for early, late in zip(names, names[1:]):
         terms = (Term(case, condition, f"probes.{late}.{q}"), Term(case, condition, f"probes.{early}.{q}"))
@@ -272,29 +242,28 @@ def _crossing_sd(time_s: np.ndarray, T: np.ndarray, t: float, uncertainty_K: flo
     return math.hypot(uncertainty_K / max(slope, 1e-9), dt / math.sqrt(12.0))
 
 
-def _curve(raw: Mapping[str, Any], where: str, base_dir: Path, case: str, condition: str | None, group: str | None,
+def _curve(datum: CurveDatum, where: str, base_dir: Path, case: str, condition: str | None, group: str | None,
            probes: tuple[str, ...]) -> tuple[str, tuple[Observable, ...]]:
-    require(isinstance(raw.get("file"), str), f"{where}.file", raw.get("file"), "required: a CSV of measured curves")
-    path = (base_dir / raw["file"]).resolve()
+    path = (base_dir / datum.file).resolve()
     cols = read_columns(path, where, ("time_s",))
     time_s = cols["time_s"]
     require(bool(np.all(np.diff(time_s) > 0)), f"{where}.file", path.name, "time_s must increase row by row")
     by_probe = {c[:-2] if c.endswith("_C") else c: c for c in cols if c != "time_s"}
-    names = _probe_names(raw.get("probes", list(by_probe)), where, probes, 1)
+    names = _probe_names(datum.probes if datum.probes is not None else tuple(by_probe), where, probes, 1)
     absent = [p for p in names if p not in by_probe]
     require(not absent, f"{where}.probes", absent, f"no column in {path.name} (columns: {', '.join(cols)})")
     allowed = tuple(float(t) for t in PROBE_TEMPERATURES_C)
-    temps = raw.get("temperatures_C")
+    temps = datum.temperatures_C
     if temps is not None:
-        require(isinstance(temps, list) and temps and all(_number(t) and float(t) in allowed for t in temps),
-                f"{where}.temperatures_C", temps, f"must be a list of some of {', '.join(f'{t:g}' for t in allowed)} (C)")
-    uK = _positive(raw, "uncertainty_K", where, "the thermocouple's standard deviation in K")
+        require(len(temps) > 0 and all(t in allowed for t in temps), f"{where}.temperatures_C", list(temps),
+                f"must be a list of some of {', '.join(f'{t:g}' for t in allowed)} (C)")
+    uK = datum.uncertainty_K
     out = []
     for p in names:
         T = cols[by_probe[p]]
         require(T[0] > 500.0 and float(np.min(T)) < T[0], f"{where}.file", f"{path.name} column {by_probe[p]}",
                 "must be a cooling curve in C from above 500 C (a curve in K? subtract 273.15)")
-        wanted = [float(t) for t in temps] if temps is not None else [t for t in allowed if T[0] > t >= float(np.min(T))]
+        wanted = list(temps) if temps is not None else [t for t in allowed if T[0] > t >= float(np.min(T))]
         for Tc in wanted:
             t = time_to_temperature(time_s, T, Tc)
             require(t is not None and T[0] > Tc, f"{where}.temperatures_C", Tc, f"probe {p}'s measured curve never "
@@ -306,17 +275,15 @@ def _curve(raw: Mapping[str, Any], where: str, base_dir: Path, case: str, condit
     return f"{case}/{condition or '-'}:curves {', '.join(names)} ({path.name})", tuple(out)
 
 
-def _traverse(raw: Mapping[str, Any], where: str, base_dir: Path, case: str, condition: str | None,
+def _traverse(datum: TraverseDatum, where: str, base_dir: Path, case: str, condition: str | None,
               group: str | None) -> tuple[str, tuple[Observable, ...]]:
-    require(isinstance(raw.get("file"), str), f"{where}.file", raw.get("file"), "required: a CSV depth_mm, HRC")
-    side = raw.get("side")
-    require(side in TRAVERSE_SIDES, f"{where}.side", side, f"must be one of {', '.join(TRAVERSE_SIDES)} (mid-width)")
-    path = (base_dir / raw["file"]).resolve()
+    side = datum.side
+    path = (base_dir / datum.file).resolve()
     cols = read_columns(path, where, ("depth_mm", "HRC"))
     require(bool(np.all(cols["depth_mm"] >= 0)), f"{where}.file", path.name, "depth_mm must be >= 0")
     require(bool(np.all((cols["HRC"] > 0) & (cols["HRC"] < 75))), f"{where}.file", path.name,
             "HRC must lie in 0-75 (a column in HV? convert it)")
-    sd = _positive(raw, "uncertainty", where, "the hardness's standard deviation in HRC")
+    sd = datum.uncertainty
     out = []
     for depth, hrc in zip(cols["depth_mm"], cols["HRC"]):
         label = f"{case}/{condition or '-'}:traverse.{side}@{depth:g}"
@@ -325,16 +292,9 @@ def _traverse(raw: Mapping[str, Any], where: str, base_dir: Path, case: str, con
     return f"{case}/{condition or '-'}:traverse {side} ({path.name})", tuple(out)
 
 
-def _depth(raw: Mapping[str, Any], where: str, case: str, condition: str | None,
-           group: str | None) -> tuple[str, tuple[Observable, ...]]:
-    side = raw.get("side")
-    require(side in TRAVERSE_SIDES, f"{where}.side", side, f"must be one of {', '.join(TRAVERSE_SIDES)} (mid-width)")
-    hrc = raw.get("hardness_HRC", 58.0)
-    require(_number(hrc) and 20.0 <= hrc <= 70.0, f"{where}.hardness_HRC", hrc, "must be a hardness in 20-70 HRC")
-    depth = _positive(raw, "value", where, "the depth in mm")
-    tol = _positive(raw, "tolerance", where, "the half-width of the stated depth range, mm")
-    require(tol < depth, f"{where}.tolerance", tol, f"must be below the depth {depth:g} mm")
-    sd = _positive(raw, "uncertainty", where, "the hardness's standard deviation at the threshold, HRC")
+def _depth(datum: DepthDatum, case: str, condition: str | None, group: str | None
+           ) -> tuple[str, tuple[Observable, ...]]:
+    side, hrc, depth, tol, sd = datum.side, datum.hardness_HRC, datum.value, datum.tolerance, datum.uncertainty
     out = []
     for at, lower, upper in ((depth - tol, float(hrc), None), (depth + tol, None, float(hrc))):
         path = f"{TRAVERSE_PREFIX}{side}@{at:g}"
@@ -343,45 +303,35 @@ def _depth(raw: Mapping[str, Any], where: str, case: str, condition: str | None,
     return (f"{case}/{condition or '-'}:HRC{hrc:g} depth {side} {depth:g} +- {tol:g} mm", tuple(out))
 
 
-def parse_measurement(i: int, raw: Any, base_dir: Path, cases: Mapping[str, Any],
+def parse_measurement(i: int, datum: Measured, base_dir: Path, cases: Mapping[str, Any],
                       probes: Callable[[str, str | None], tuple[str, ...]]) -> Measurement:
-    """One ``[[measurements]]`` table (see the module docstring); ``probes(case, condition)`` gives the probe names of a
-    case at a condition (loading it: a condition not in the case is refused there)."""
+    """One ``[[measurements]]`` table, read against its declaration (:mod:`quenchsim.inputs.calibration`; see the
+    module docstring); ``probes(case, condition)`` gives the probe names of a case at a condition (loading it: a
+    condition not in the case is refused there)."""
     where = f"measurements[{i}]"
-    require(isinstance(raw, Mapping), where, raw, "must be a table")
-    kind = raw.get("kind", "value")
-    require(kind in KINDS, f"{where}.kind", kind, f"must be one of {', '.join(KINDS)}")
-    allowed = COMMON_KEYS + KIND_KEYS[kind]
-    unknown = sorted(set(raw) - set(allowed))
-    require(not unknown, where, unknown, f"allowed keys for kind {kind!r}: {', '.join(allowed)}")
-    require(raw.get("case") in cases, f"{where}.case", raw.get("case"),
+    require(datum.case in cases, f"{where}.case", datum.case,
             f"unknown case; the [cases] of this file: {', '.join(cases) or 'none'}")
-    case = str(raw["case"])
-    condition = None if raw.get("condition") is None else str(raw["condition"])
-    require(isinstance(raw.get("source"), str) and raw["source"].strip(), f"{where}.source", raw.get("source"),
-            "required: where the measured value comes from")
-    group = raw.get("group")
-    require(group is None or (isinstance(group, str) and group), f"{where}.group", group, "must be a group name")
+    case, condition, group = datum.case, datum.condition_name, datum.group
     names = probes(case, condition)
-    if kind in ("value", "bound"):
-        label, obs, quantity = _scalar(kind, raw, where, case, condition, group)
+    if isinstance(datum, (ValueDatum, BoundDatum)):
+        label, obs, quantity = _scalar(datum, where, case, condition, group)
         if quantity.startswith("probes."):
             probe = quantity.split(".")[1]
             require(probe in names, f"{where}.quantity", quantity, f"no probe {probe!r}; the case's probes: "
                     f"{', '.join(names) or 'none'}")
-        plain = kind == "value" and obs.relation == "value"
-        return Measurement(kind, case, condition, label, raw["source"], obs.group, (obs,),
+        plain = isinstance(datum, ValueDatum) and obs.relation == "value"
+        return Measurement(datum.kind, case, condition, label, datum.source, obs.group, (obs,),
                            quantity=quantity if plain else None, value=obs.value if plain else None,
                            uncertainty=obs.sd if plain else None)
-    if kind == "order":
-        label, observables = _order(raw, where, case, condition, group, names)
-    elif kind == "curve":
-        label, observables = _curve(raw, where, base_dir, case, condition, group, names)
-    elif kind == "depth":
-        label, observables = _depth(raw, where, case, condition, group)
+    if isinstance(datum, OrderDatum):
+        label, observables = _order(datum, where, case, condition, group, names)
+    elif isinstance(datum, CurveDatum):
+        label, observables = _curve(datum, where, base_dir, case, condition, group, names)
+    elif isinstance(datum, DepthDatum):
+        label, observables = _depth(datum, case, condition, group)
     else:
-        label, observables = _traverse(raw, where, base_dir, case, condition, group)
-    return Measurement(kind, case, condition, label, raw["source"], observables[0].group, observables)
+        label, observables = _traverse(datum, where, base_dir, case, condition, group)
+    return Measurement(datum.kind, case, condition, label, datum.source, observables[0].group, observables)
 
 
 def read_term(summary: Mapping[str, Any] | None, folder: Path | None, path: str) -> float | None:

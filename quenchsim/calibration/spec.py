@@ -48,7 +48,6 @@ Every error is one :class:`~quenchsim.errors.InputError` naming the field, raise
 
 from __future__ import annotations
 
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -59,12 +58,11 @@ from quenchsim.calibration.data import (Measurement, Observable, Prediction, che
 from quenchsim.calibration.inputs import FreeInput, free_input, used_by
 from quenchsim.case import Case, load_case
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.calibration import (CalibrationFile, CaseEntry, DesignOptions, DiscrepancyEntry,
+                                          PredictionEntry, SamplerOptions)
+from quenchsim.inputs.declare import declared_fields, from_table
+from quenchsim.inputs.reader import read_toml, reading
 
-DESIGN_DEFAULTS = {"screening_trajectories": 4, "training_runs": 16, "holdout_runs": 6, "seed": 19, "refine_waves": 0,
-                   "refine_runs": 0}
-SAMPLER_DEFAULTS = {"walkers": 32, "steps": 3000, "burn": 1000}
-TOP_KEYS = {"name", "description", "inputs", "cases", "measurements", "predictions", "discrepancy", "design", "sampler"}
-DISCREPANCY_KEYS = ("scale", "unit", "reason")
 
 
 @dataclass(frozen=True)
@@ -106,8 +104,8 @@ class CalibrationSpec:
     measurements: tuple[Measurement, ...]
     predictions: tuple[Prediction, ...] = ()
     discrepancy: tuple[DiscrepancyGroup, ...] = ()
-    design: Mapping[str, int] = field(default_factory=lambda: dict(DESIGN_DEFAULTS))
-    sampler: Mapping[str, int] = field(default_factory=lambda: dict(SAMPLER_DEFAULTS))
+    design: Mapping[str, int] = field(default_factory=lambda: asdict_of(DesignOptions()))
+    sampler: Mapping[str, int] = field(default_factory=lambda: asdict_of(SamplerOptions()))
 
     @property
     def observables(self) -> tuple[Observable, ...]:
@@ -128,85 +126,37 @@ class CalibrationSpec:
         return out
 
 
-def _number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
-
-
-def _discrepancy(raw: Any, groups: set[str]) -> tuple[DiscrepancyGroup, ...]:
-    require(isinstance(raw, Mapping), "discrepancy", raw, "must be a table of groups {scale, unit, reason}")
+def _discrepancy(groups_given: Mapping[str, DiscrepancyEntry], groups: set[str]) -> tuple[DiscrepancyGroup, ...]:
     out = []
-    for name, spec in raw.items():
-        where = f"discrepancy.{name}"
-        require(isinstance(spec, Mapping), where, spec, "must be a table {scale, unit, reason}")
-        unknown = sorted(set(spec) - set(DISCREPANCY_KEYS))
-        require(not unknown, where, unknown, f"allowed keys: {', '.join(DISCREPANCY_KEYS)}")
-        require(name in groups, where, name, f"no measurement is in this group; the groups: {', '.join(sorted(groups))}")
-        scale = spec.get("scale")
-        require(_number(scale) and scale > 0, f"{where}.scale", scale, "must be a number > 0 (the half-normal prior's "
-                "scale of the group's discrepancy, in the group's unit)")
-        require(isinstance(spec.get("reason"), str) and spec["reason"].strip(), f"{where}.reason", spec.get("reason"),
-                "required: why the prior has that scale")
-        out.append(DiscrepancyGroup(str(name), float(scale), str(spec.get("unit", "")), spec["reason"]))
+    for name, spec in groups_given.items():
+        require(name in groups, f"discrepancy.{name}", name,
+                f"no measurement is in this group; the groups: {', '.join(sorted(groups))}")
+        out.append(DiscrepancyGroup(str(name), spec.scale, spec.unit, spec.reason))
     return tuple(out)
 
 
-def _options(raw: Any, defaults: Mapping[str, int], table: str, minimum: Mapping[str, int]) -> dict[str, int]:
-    require(isinstance(raw, Mapping), table, raw, "must be a table")
-    unknown = set(raw) - set(defaults)
-    require(not unknown, table, sorted(unknown), f"allowed keys: {', '.join(defaults)}")
-    out = {**defaults, **raw}
-    for key, low in minimum.items():
-        require(isinstance(out[key], int) and not isinstance(out[key], bool) and out[key] >= low,
-                f"{table}.{key}", out[key], f"must be an integer >= {low}")
-    return out
-
-
-def _case_spec(label: str, raw: Any, base_dir: Path) -> CaseSpec:
+def _case_spec(label: str, entry: CaseEntry, base_dir: Path) -> CaseSpec:
     where = f"cases.{label}"
-    require(isinstance(raw, Mapping), where, raw, "must be a table with file = CASE.toml")
-    unknown = set(raw) - {"file", "mesh", "confirm_mesh", "set"}
-    require(not unknown, where, sorted(unknown), "allowed keys: file, mesh, confirm_mesh, set")
-    require(isinstance(raw.get("file"), str), f"{where}.file", raw.get("file"), "required: a case file (relative to CAL.toml)")
-    path = (base_dir / raw["file"]).resolve()
-    require(path.is_file(), f"{where}.file", raw["file"], f"file not found ({path})")
-    mesh = raw.get("mesh", 1.0)
-    require(_number(mesh) and mesh > 0, f"{where}.mesh", mesh, "must be a number > 0 (element sizes x this)")
-    confirm = raw.get("confirm_mesh")
-    require(confirm is None or (_number(confirm) and confirm > 0), f"{where}.confirm_mesh", confirm,
-            "must be a number > 0 (element sizes x this for the nominal and calibrated runs)")
-    overrides = raw.get("set", {})
-    require(isinstance(overrides, Mapping), f"{where}.set", overrides, "must be a table of dotted case fields")
-    return CaseSpec(label=label, path=path, mesh=float(mesh), overrides=dict(overrides),
-                    confirm_mesh=None if confirm is None else float(confirm))
+    path = (base_dir / entry.file).resolve()
+    require(path.is_file(), f"{where}.file", entry.file, f"file not found ({path})")
+    return CaseSpec(label=label, path=path, mesh=entry.mesh, overrides=dict(entry.set),
+                    confirm_mesh=entry.confirm_mesh)
 
 
-def _prediction(where: str, raw: Any, cases: Mapping[str, CaseSpec]) -> Prediction:
-    require(isinstance(raw, Mapping), where, raw, "must be a table")
-    keys = ("case", "condition", "quantity")
-    unknown = set(raw) - set(keys)
-    require(not unknown, where, sorted(unknown), f"allowed keys: {', '.join(keys)}")
-    require(raw.get("case") in cases, f"{where}.case", raw.get("case"),
+def _prediction(where: str, entry: PredictionEntry, cases: Mapping[str, CaseSpec]) -> Prediction:
+    require(entry.case in cases, f"{where}.case", entry.case,
             f"unknown case; the [cases] of this file: {', '.join(cases) or 'none'}")
-    quantity = check_quantity(raw.get("quantity"), where)
-    condition = raw.get("condition")
-    return Prediction(case=raw["case"], condition=None if condition is None else str(condition), quantity=quantity)
+    quantity = check_quantity(entry.quantity, where)
+    condition = entry.condition
+    return Prediction(case=entry.case, condition=None if condition is None else str(condition), quantity=quantity)
 
 
 def parse_calibration(raw: Mapping[str, Any], base_dir: Path, path: Path | None = None) -> CalibrationSpec:
-    """Check a calibration table completely (inputs against their data files, cases loaded, measurements)."""
-    unknown = set(raw) - TOP_KEYS
-    require(not unknown, "calibration file", sorted(unknown), f"allowed keys: {', '.join(sorted(TOP_KEYS))}")
-    paths: Any = raw.get("inputs")   # checked by require: a list of strings
-    require(isinstance(paths, list) and paths and all(isinstance(p, str) for p in paths), "inputs", paths,
-            "required: a list of free-input paths, e.g. [\"material.SUJ3.mechanics.trip.K_1_Pa\"]")
-    require(len(set(paths)) == len(paths), "inputs", paths, "each input may appear once")
-    inputs = tuple(free_input(p, f"inputs[{i}]") for i, p in enumerate(paths))
-    raw_cases: Any = raw.get("cases")
-    require(isinstance(raw_cases, Mapping) and raw_cases, "cases", raw_cases,
-            "required: one [cases.LABEL] table per case file")
-    cases = {label: _case_spec(label, spec, base_dir) for label, spec in raw_cases.items()}
-    raw_meas: Any = raw.get("measurements")
-    require(isinstance(raw_meas, list) and raw_meas, "measurements", raw_meas, "required: one [[measurements]] per datum")
+    """Check a calibration table completely (read against its declaration, :mod:`quenchsim.inputs.calibration`;
+    inputs against their data files, cases loaded, measurements)."""
+    table = from_table(CalibrationFile, raw)
+    inputs = tuple(free_input(p, f"inputs[{i}]") for i, p in enumerate(table.inputs))
+    cases = {label: _case_spec(label, spec, base_dir) for label, spec in table.cases.items()}
     loaded: dict[tuple[str, str | None], Case] = {}
 
     def case_at(label: str, condition: str | None, where: str) -> Case:
@@ -219,7 +169,7 @@ def parse_calibration(raw: Mapping[str, Any], base_dir: Path, path: Path | None 
         return loaded[(label, condition)]
 
     measurements = []
-    for i, m in enumerate(raw_meas):
+    for i, m in enumerate(table.measurements):
         where = f"measurements[{i}]"
 
         def probes(label: str, cond: str | None, where: str = where) -> tuple[str, ...]:
@@ -229,36 +179,31 @@ def parse_calibration(raw: Mapping[str, Any], base_dir: Path, path: Path | None 
         for o in measurements[-1].observables:
             for t in o.terms:
                 case_at(t.case, t.condition, where)
-    raw_pred = raw.get("predictions", [])
-    require(isinstance(raw_pred, list), "predictions", raw_pred, "must be a list of [[predictions]] tables")
-    predictions = tuple(_prediction(f"predictions[{i}]", p, cases) for i, p in enumerate(raw_pred))
+    predictions = tuple(_prediction(f"predictions[{i}]", p, cases) for i, p in enumerate(table.predictions))
     for i, p in enumerate(predictions):
         case_at(p.case, p.condition, f"predictions[{i}]")
     labels = [o.label for m in measurements for o in m.observables] + [p.label for p in predictions]
     require(len(set(labels)) == len(labels), "measurements", sorted({x for x in labels if labels.count(x) > 1}),
             "each case/condition/quantity may appear once")
     groups = {m.group for m in measurements if m.group}
-    discrepancy = _discrepancy(raw.get("discrepancy", {}), groups)
+    discrepancy = _discrepancy(table.discrepancy, groups)
     for i, inp in enumerate(inputs):
         require(any(used_by(inp, c) for c in loaded.values()), f"inputs[{i}]", inp.path,
                 "no case of the calibration reads that data file")
-    return CalibrationSpec(name=str(raw.get("name", path.stem if path else "calibration")),
-                           description=str(raw.get("description", "")), path=path, inputs=inputs, cases=cases,
+    return CalibrationSpec(name=table.name if table.name is not None else (path.stem if path else "calibration"),
+                           description=table.description, path=path, inputs=inputs, cases=cases,
                            measurements=tuple(measurements), predictions=predictions, discrepancy=discrepancy,
-                           design=_options(raw.get("design", {}), DESIGN_DEFAULTS, "design",
-                                           {"screening_trajectories": 2, "training_runs": 0, "holdout_runs": 1, "seed": 0,
-                                            "refine_waves": 0, "refine_runs": 0}),
-                           sampler=_options(raw.get("sampler", {}), SAMPLER_DEFAULTS, "sampler",
-                                            {"walkers": 2 * (len(inputs) + len(discrepancy)) + 2, "steps": 100,
-                                             "burn": 0}))
+                           design=asdict_of(table.design), sampler=asdict_of(table.sampler))
+
+
+def asdict_of(options: DesignOptions | SamplerOptions) -> dict[str, int]:
+    """The design or sampler options as the calibration's code reads them (a mapping by key)."""
+    return {f.name: getattr(options, f.name) for f in declared_fields(type(options))}
 
 
 def load_calibration(path: str | Path) -> CalibrationSpec:
     """Read and check a calibration file (see the module docstring)."""
     path = Path(path)
-    require(path.is_file(), "calibration", str(path), "file not found")
-    try:
-        raw = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError("calibration", str(path), f"is not valid TOML ({exc})") from None
-    return parse_calibration(raw, path.parent, path)
+    raw = read_toml(path, "calibration")
+    with reading(path):
+        return parse_calibration(raw, path.parent, path)

@@ -1,32 +1,18 @@
-"""Frozen dataclasses of a parsed case (built by :mod:`quenchsim.case.parse`; every value already checked).
+"""The typed case: a case file's tables (declared in :mod:`quenchsim.inputs.case`) with its steel, section and bath
+resolved, every value and every rule that ties the tables together checked before any work starts.
 
-Tables of a case file and the dataclass each becomes:
+Tables of a case file (every key: docs/reference/case_keys.md, generated from the declarations):
 
 ``name``, ``description``  the case's name (default: the file name) and a free text
-``material``       steel name (materials/NAME.toml)
+``material``       steel name (materials/NAME.toml) or a path to a steel file -> ``steel`` (loaded)
 ``[geometry]``     ``type = "rectangular" | "spherical_outer" | "profile"`` and its dimensions -> ``profile``
-``[mesh]``         ``size_mm`` (core), ``surface_size_mm``, ``surface_layer_mm``      -> :class:`MeshSpec`
-``[process]``      ``austenitising_temperature_C``, ``room_temperature_C``            -> :class:`ProcessSpec`
-``[transfer]``     the move from the furnace to the bath in still air: ``time_s`` (0 = none), ``temperature_C``,
-                   ``emissivity`` (natural convection + radiation, quenchsim.bath.air_htc)  -> :class:`TransferStage`
-``[quench]``       ``time_s``, ``htc_model = "bath" | "table"``, ``[quench.bath]`` (bath model) or
-                   ``[quench.htc_table]`` (``T_C``, ``h_W_m2K``, ``ambient_C``; optional per-segment
-                   ``[quench.htc_table.segments.NAME]``; ``time_s`` + ``h_W_m2K`` for HTC vs time); optional
-                   ``immersion_speed_mm_s`` (the part enters bottom face first at this speed: below the oil
-                   level the quench HTC, above it the transfer air's)                  -> :class:`QuenchStage`
-``[air]``          ``temperature_C``, ``until_max_C`` (stop when the hottest point is below) or ``time_s``,
-                   ``htc_model = "natural" | "table"`` with ``emissivity`` or ``[air.htc_table]`` -> :class:`AirStage`
-``[temper]``       optional, after the air stage: ``temperature_C``, ``time_s`` (in the furnace, from the part's
-                   entry), ``htc_model = "natural" | "table"`` with ``emissivity`` or ``[temper.htc_table]``, then
-                   cooling in air (the ``[air]`` stage's medium) until ``cool_until_max_C``    -> :class:`TemperStage`
-``[[probes]]``     ``name``, ``r_mm``, ``z_mm``                                       -> :class:`Probe`
-``[time]``         step control: ``dt_initial_s``, ``dt_min_s``, ``dt_max_s``, ``max_dT_K``, ``max_dX``,
-                   ``growth``                                                        -> :class:`TimeControl`
-``[output]``       ``frames`` (number of VTK frames), ``checkpoint_minutes`` (wall time between
-                   checkpoints; 0: after every step)                                 -> :class:`OutputSpec`
-``[mechanics]``    ``enabled``, ``fixed_point_mm`` and the stress solver's options (``plasticity``, ``trip``,
-                   ``newton_rtol``, ...)                                            -> :class:`MechanicsOptions`
+``[mesh]``, ``[process]``, ``[transfer]``, ``[quench]`` (``[quench.bath]`` -> ``bath``, or ``[quench.htc_table]``),
+``[air]``, ``[temper]`` (optional), ``[time]``, ``[output]``, ``[mechanics]``, ``[[probes]]``
 ``[measured]``, ``[peer]``  measured or published results of the case, for reports; not read by the run
+
+A value is changed by a copy: ``dataclasses.replace(case, quench=replace(case.quench, time_s=600.0))`` checks the
+new case like a file's (the tables' limits, the rules between them, the steel and bath resolved again);
+:meth:`Case.with_overrides` does the same for dotted keys (``{"quench.time_s": 600}``, the command line's ``--set``).
 """
 
 from __future__ import annotations
@@ -38,147 +24,175 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from quenchsim.bath import BathConfig
-from quenchsim.geometry.profile import Profile
+from quenchsim.bath.config import resolve_bath
+from quenchsim.errors import InputError, require
+from quenchsim.geometry.profile import MM, Profile, profile_from_geometry
+from quenchsim.inputs.case import (TEMPER_MAX_C, Air, FreeTable, Geometry, MechanicsOptions, Mesh, Output, Probe,
+                                   Process, Quench, Temper, TimeControl, Transfer)
+from quenchsim.inputs.declare import REQUIRED, Table, quantity, resolved, to_table
+from quenchsim.inputs.htc import HtcTable
+from quenchsim.inputs.reader import reading
+from quenchsim.inputs.steel import Steel
+from quenchsim.materials import load_steel
+
+TransferStage, QuenchStage, AirStage, TemperStage, ProcessSpec, MeshSpec, OutputSpec = (
+    Transfer, Quench, Air, Temper, Process, Mesh, Output)
+"""The tables under the names they had before the declarations (:mod:`quenchsim.inputs.case`)."""
 
 
-@dataclass(frozen=True)
-class MeshSpec:
-    size_mm: float
-    surface_size_mm: float
-    surface_layer_mm: float
+@dataclass(frozen=True, kw_only=True)
+class Case(Table):
+    """A fully resolved, checked case: its tables as declared, the steel (``steel``, the material's data), the
+    section (``profile``) and the bath (``bath``, with the bath model) resolved. Derive new cases with
+    :func:`dataclasses.replace`, :meth:`with_overrides` or :meth:`refined`; :meth:`resolved` is the table they were
+    read from (a run's case.toml)."""
 
+    UNKNOWN = "unknown table or key"
 
-@dataclass(frozen=True)
-class ProcessSpec:
-    austenitising_temperature_C: float
-    room_temperature_C: float
+    name: str = quantity("", doc="the case's name (default: the file stem); names the default output folder")
+    description: str = quantity("", doc="free text")
+    material: str = quantity(REQUIRED, doc="a steel's name (found in your data folders, then the shipped "
+                             "materials/) or a path to a steel file (*.toml, relative to the case file)",
+                             allowed="is required (a name in materials/)")
+    geometry: Geometry = quantity(REQUIRED, doc="the section before the quench, dimensions in mm (below)")
+    mesh: Mesh = quantity(Mesh(), written=True, doc="element sizes")
+    process: Process = quantity(Process(), written=True, doc="austenitising and room temperatures")
+    transfer: Transfer = quantity(Transfer(), written=True, doc="from the furnace to the bath")
+    quench: Quench = quantity(REQUIRED, doc="the oil stage")
+    air: Air = quantity(Air(), written=True, doc="cooling in air")
+    temper: Temper | None = quantity(None, doc="optional temper after the air stage")
+    time: TimeControl = quantity(TimeControl(), written=True, doc="step control")
+    output: Output = quantity(Output(), written=True, doc="VTK frames and checkpoints")
+    mechanics: MechanicsOptions = quantity(MechanicsOptions(), written=True, doc="the stress solver")
+    probes: tuple[Probe, ...] = quantity((), doc="points whose temperature is recorded")
+    measured: FreeTable | None = quantity(None, doc="measured dimensions for the report's comparison: source, "
+                                          "before_mm = { id, od, width }, after_mm = { ... } (mm)")
+    peer: FreeTable | None = quantity(None, doc="another code's results for the same case (documentation for the "
+                                      "validation studies; not read by a run)")
 
+    condition: str | None = resolved()
+    """The condition merged over the file's tables (``--condition``), None for a case without conditions."""
+    path: Path | None = resolved()
+    """The case file (None for a case built from a table)."""
+    profile: Profile = resolved(init=False)
+    """The section (m), built from ``geometry``."""
+    steel: Steel = resolved(init=False)
+    """The steel (:func:`quenchsim.materials.load_steel`), its mechanics and tempering data resolved."""
+    bath: BathConfig | None = resolved(init=False)
+    """The bath the model runs on (``quench.htc_model = "bath"``), else None."""
 
-@dataclass(frozen=True)
-class QuenchStage:
-    """The oil stage: its length and either the bath model (``bath``) or HTC tables (``htc_table``)."""
+    @property
+    def reference_state(self) -> str:
+        """What the geometry's dimensions are: the "annealed" part at room temperature or the "austenitised" one."""
+        return self.geometry.reference_state
 
-    time_s: float
-    htc_model: str
-    bath: BathConfig | None
-    htc_table: Mapping[str, Any] | None
-    immersion_speed_mm_s: float | None = None
+    def check(self) -> None:
+        """Resolve the steel, section and bath and check what ties the tables together (the material and its
+        austenitising range, sizes against the section, probes inside it, HTC tables against its surfaces, the
+        media colder than the austenitised part, the temper)."""
+        set_ = object.__setattr__
+        set_(self, "material", _material_name(self.material, self.path))
+        set_(self, "steel", load_steel(self.material))
+        with reading(self.steel.path):
+            self.steel.require_run_data()
+        set_(self, "profile", profile_from_geometry(self.geometry))
+        self._check_mesh()
+        if self.steel.transforms:   # its dissolved carbon, Ms and kinetics are known within its tabulated range
+            self.steel.check_austenitising_temperature(self.process.austenitising_temperature_C,
+                                                       "process.austenitising_temperature_C")
+        segments = sorted({s.name for s in self.profile.segments} - {"axis"})
+        set_(self, "bath", resolve_bath(self.quench.bath, "quench.bath")
+             if self.quench.htc_model == "bath" and self.quench.bath is not None else None)
+        self._check_quench_media(segments)
+        if self.air.htc_model == "table":
+            _htc_tables(self.air.htc_table, "air.htc_table", segments)
+        if self.temper is not None:
+            self._check_temper(segments)
+        self._check_probes()
 
+    def _check_mesh(self) -> None:
+        """The element sizes no larger than the section's larger extent (a coarser mesh cannot represent the
+        section: `--mesh-size 1000` ran the whole quench, then failed in the traverses)."""
+        r0, r1, z0, z1 = self.profile.bounds()
+        largest_mm = max(r1 - r0, z1 - z0) / MM
+        for key in ("size_mm", "surface_size_mm"):
+            value = getattr(self.mesh, key)
+            require(value <= largest_mm, f"mesh.{key}", value, f"must be > 0 and at most {largest_mm:g} mm, the "
+                    f"larger extent of the section (radial {(r1 - r0) / MM:g} mm, axial {(z1 - z0) / MM:g} mm)")
 
-@dataclass(frozen=True)
-class TransferStage:
-    """The part's move from the furnace into the bath: ``time_s`` in still air at ``temperature_C`` (0 s: none),
-    natural convection plus radiation with ``emissivity``."""
+    def _check_quench_media(self, segments: list[str]) -> None:
+        """The quench's HTC tables against the section's surfaces; the quench medium colder than the austenitised
+        part."""
+        T_aust = self.process.austenitising_temperature_C
+        if self.bath is not None:
+            ambients: list[Any] = [self.bath.oil_temperature_C]
+            field = "quench.bath.oil_temperature_C"
+        else:
+            table = self.quench.htc_table
+            assert table is not None   # the "table" model requires its tables (Quench.check)
+            _htc_tables(table, "quench.htc_table", segments)
+            ambients = [table.ambient_C, *(s.ambient_C for s in table.segments.values())]
+            field = "quench.htc_table.ambient_C"
+        for T in ambients:
+            if T is not None and T >= T_aust:
+                raise InputError(field, T, f"the quench medium must be colder than the austenitising temperature "
+                                           f"{T_aust:g} C")
 
-    time_s: float
-    temperature_C: float
-    emissivity: float
+    def _check_temper(self, segments: list[str]) -> None:
+        """The ``[temper]`` stage: below the austenitising temperature and the tempering data's range, cooling to
+        between the air's temperature and its own, a steel with tempering data; its cooling limit defaults to the air
+        stage's."""
+        from dataclasses import replace
 
+        from quenchsim.metallurgy.tempering import has_tempering
 
-@dataclass(frozen=True)
-class AirStage:
-    """Cooling in air after the quench, until the hottest point is below ``until_max_C`` or ``time_s`` ends."""
+        temper = self.temper
+        assert temper is not None
+        if temper.cool_until_max_C is None:
+            temper = replace(temper, cool_until_max_C=self.air.until_max_C,
+                             _given={**temper._given, "cool_until_max_C": self.air.until_max_C})
+            object.__setattr__(self, "temper", temper)
+        T_aust, room = self.process.austenitising_temperature_C, self.process.room_temperature_C
+        require(temper.temperature_C < T_aust, "temper.temperature_C", temper.temperature_C,
+                f"must be below the austenitising temperature {T_aust:g} C (a temper is a reheat of the quenched part)")
+        require(room < temper.temperature_C <= TEMPER_MAX_C, "temper.temperature_C", temper.temperature_C,
+                f"must lie above the room temperature {room:g} C and at most {TEMPER_MAX_C:g} C (the range of the "
+                "tempering data)")
+        cool = temper.cool_until_max_C
+        require(cool is not None and self.air.temperature_C <= cool <= temper.temperature_C,
+                "temper.cool_until_max_C", cool,
+                f"must be >= {self.air.temperature_C:g} and <= {temper.temperature_C:g}")
+        if temper.htc_model == "table":
+            _htc_tables(temper.htc_table, "temper.htc_table", segments)
+        if not has_tempering(self.steel):
+            tempering = self.steel.tempering
+            named = f" (its file names {tempering!r}, not found)" if isinstance(tempering, str) else ""
+            raise InputError("temper", self.material, f"this steel has no tempering data{named}: a `tempering` file "
+                             "named in its material file, as materials/SUJ3.toml names data/tempering_1C_Cr.toml; "
+                             "remove [temper] or add the data")
 
-    temperature_C: float
-    until_max_C: float
-    time_s: float
-    htc_model: str
-    emissivity: float
-    htc_table: Mapping[str, Any] | None
+    def _check_probes(self) -> None:
+        names: set[str] = set()
+        for i, probe in enumerate(self.probes):
+            field = f"probes[{i}]"
+            require(probe.name not in names, f"{field}.name", probe.name, "must be unique")
+            names.add(probe.name)
+            r, z = probe.r_mm, probe.z_mm
+            if not self.profile.contains(r * MM, z * MM) and self.profile.distance(r * MM, z * MM) > 1e-9:
+                raise InputError(field, f"{probe.name} at ({r:g}, {z:g}) mm", "lies outside the section")
 
-
-@dataclass(frozen=True)
-class TemperStage:
-    """The temper after the quench: ``time_s`` in a furnace at ``temperature_C`` (still furnace air, natural
-    convection plus radiation with ``emissivity``, or an HTC table), then air cooling until the hottest point is
-    below ``cool_until_max_C`` or ``cool_time_s`` ends."""
-
-    temperature_C: float
-    time_s: float
-    htc_model: str
-    emissivity: float
-    htc_table: Mapping[str, Any] | None
-    cool_until_max_C: float
-    cool_time_s: float
-
-
-@dataclass(frozen=True)
-class TimeControl:
-    """Adaptive step control.
-
-    A thermal step is limited by the largest nodal temperature change (``max_dT_K``, K) and the largest change
-    of a diffusional product's fraction (``max_dX``: pearlite, bainite; martensite follows the temperature and
-    is limited through ``max_dT_K``); it grows by at most ``growth`` per step between ``dt_min_s`` and
-    ``dt_max_s``. The stress solver (rate-independent: its increments depend on the changes of temperature and
-    phases, not on time) takes one step over as many thermal steps as keep the change since its last step
-    within ``mechanics_max_dT_K`` (K, at any quadrature point) and ``mechanics_max_dX`` (any phase fraction,
-    martensite included); 0 steps it with every thermal step. A thermal step beyond them is split into as many stress
-    steps as keep each within them, along the step's own path (temperatures linear in time, phases as the kinetics
-    form them on it). The thermal march is second order (BDF2); the stress update is first order in the temperature
-    step (ring A condition 1's ID change moves by ~3e-5 mm per kelvin of ``mechanics_max_dT_K``, its stresses not
-    measurably). The defaults (30 K and 0.02 for both) keep the time-discretisation error of ring A condition 1 within
-    the project's tolerances (validation/quench/convergence)."""
-
-    dt_initial_s: float
-    dt_min_s: float
-    dt_max_s: float
-    max_dT_K: float
-    max_dX: float
-    growth: float
-    mechanics_max_dT_K: float
-    mechanics_max_dX: float
-
-
-@dataclass(frozen=True)
-class OutputSpec:
-    frames: int
-    checkpoint_minutes: float
-
-
-@dataclass(frozen=True)
-class MechanicsOptions:
-    """Whether the stress is solved, the optional fixed point (case geometry, mm) and the solver options
-    passed on to :func:`quenchsim.mechanics.load_mechanics` (names and values checked when the case loads, by
-    :func:`quenchsim.mechanics.solver_options`)."""
-
-    enabled: bool
-    fixed_point_mm: tuple[float, float] | None
-    solver_options: Mapping[str, Any]
-
-
-@dataclass(frozen=True)
-class Probe:
-    name: str
-    r_mm: float
-    z_mm: float
-
-
-@dataclass(frozen=True)
-class Case:
-    """A fully resolved, checked case. ``data`` is the merged table it was parsed from (written to a run's
-    case.toml); derive new cases with :meth:`with_overrides` or :meth:`refined`, never by editing it."""
-
-    name: str
-    condition: str | None
-    path: Path | None
-    data: Mapping[str, Any]
-    material: str
-    profile: Profile
-    reference_state: str
-    mesh: MeshSpec
-    process: ProcessSpec
-    transfer: TransferStage
-    quench: QuenchStage
-    air: AirStage
-    time: TimeControl
-    output: OutputSpec
-    mechanics: MechanicsOptions
-    probes: tuple[Probe, ...]
-    temper: TemperStage | None = None
+    # -- the inputs as a table ---------------------------------------------------------------------------------
+    @property
+    def data(self) -> dict[str, Any]:
+        """The case's tables as read (the file's, its condition merged, defaults the declarations write): what
+        :meth:`resolved` holds besides the name and condition."""
+        return to_table(self)
 
     def get(self, dotted: str, default: Any = None) -> Any:
-        """The raw value at a dotted path of the merged table (for reports; the run reads the typed fields)."""
+        """The value at a dotted path of the case's tables as read (for reports; the run reads the typed fields)."""
         node: Any = self.data
         for key in dotted.split("."):
             if not isinstance(node, Mapping) or key not in node:
@@ -188,7 +202,7 @@ class Case:
 
     def resolved(self) -> dict[str, Any]:
         """The fully resolved inputs as written to a run's case.toml."""
-        return {"name": self.name, "condition": self.condition or "", **self.data}
+        return {**self.data, "name": self.name, "condition": self.condition or ""}
 
     def digest(self) -> str:
         """SHA-256 (first 16 hex digits) of :meth:`resolved`: the same inputs give the same value wherever the case
@@ -197,8 +211,8 @@ class Case:
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
     def with_overrides(self, overrides: Mapping[str, Any]) -> "Case":
-        """A new case with dotted-path ``overrides`` applied to this one's table (a value None removes the
-        key, so its default applies), checked again."""
+        """A new case with dotted-path ``overrides`` applied to this one's tables (a value None removes the key, so
+        its default applies), checked again."""
         from quenchsim.case.parse import build_case
 
         return build_case(self.data, self.name, self.condition, self.path, overrides)
@@ -222,3 +236,25 @@ class Case:
         the studies that refine their cases are not to move.)"""
         surface = float(f"{self.mesh.surface_size_mm * size_mm / self.mesh.size_mm:.12g}")
         return self.with_overrides({"mesh.size_mm": size_mm, "mesh.surface_size_mm": surface})
+
+
+def _material_name(name: str, case_path: Path | None) -> str:
+    """The material's name in the data folders, or the path of a steel file (``*.toml``); a relative path is taken
+    from the case file's folder (from the working directory for a case built from a table), and returned absolute."""
+    require(name != "", "material", name, "must be a material name or a path")
+    if not name.endswith(".toml"):
+        return name
+    file = Path(name).expanduser()
+    if not file.is_absolute():
+        file = (case_path.parent if case_path is not None else Path.cwd()) / file
+    require(file.is_file(), "material", name, f"no such file ({file})")
+    return str(file.resolve())
+
+
+def _htc_tables(table: HtcTable | None, field: str, segments: list[str]) -> None:
+    """An HTC table checked against the section's segment names (the point labels of the run)."""
+    from quenchsim.thermal import parse_htc_table
+
+    require(table is not None, field, None, "required (a table) when the htc_model is 'table'")
+    assert table is not None
+    parse_htc_table(table, np.array(segments), field)

@@ -29,14 +29,14 @@ def run(args: argparse.Namespace) -> int:
     if not args.spacing_mm > 0:
         raise InputError("--spacing-mm", args.spacing_mm, "must be > 0")
     case = load_case(resolve_case(args.case), args.condition)
-    if case.quench.bath is None:
+    if case.bath is None:
         raise InputError("quench.htc_model", case.quench.htc_model, "must be 'bath' for `quenchsim bath`")
-    points, htc = outline_htc(case.profile, case.quench.bath, args.spacing_mm * 1e-3)
+    points, htc = outline_htc(case.profile, case.bath, args.spacing_mm * 1e-3)
     bath = case.get("quench.bath", {})
     print(f"{case.name} condition {case.condition or '-'}: {bath.get('quenchant')} at {bath.get('oil_temperature_C')} C, "
           f"ID jets {bath.get('id_jet_speed_mm_s', '-')} mm/s, OD jets {bath.get('od_jet_speed_mm_s', '-')} mm/s, "
-          f"{bath.get('rotation_rpm', 0)} rpm, agitation {case.quench.bath.agitation} "
-          f"({case.quench.bath.agitation_m_s:g} m/s bulk), support {case.quench.bath.support}")
+          f"{bath.get('rotation_rpm', 0)} rpm, agitation {case.bath.agitation} "
+          f"({case.bath.agitation_m_s:g} m/s bulk), support {case.bath.support}")
     header = f"{'segment':<22}{'speed m/s':>12}{'T_L C':>10}" + "".join(f"{f'h@{T}':>8}" for T in TABLE_T_C)
     print(header)
     print("-" * len(header))

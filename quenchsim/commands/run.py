@@ -11,6 +11,7 @@ from pathlib import Path
 from quenchsim.case import load_case
 from quenchsim.commands.mesh_limit import MAX_TRIANGLES, refuse_large_mesh
 from quenchsim.errors import InputError
+from quenchsim.inputs.reader import parse_value
 from quenchsim.report.lengths import LENGTH_DECIMALS, mm
 from quenchsim.results import files
 from quenchsim.shipped import resolve_case
@@ -18,17 +19,12 @@ from quenchsim.shipped import resolve_case
 
 def parse_sets(items: list[str]) -> dict[str, object]:
     """``["quench.time_s=600", "geometry.type=\\"profile\\""]`` -> dotted overrides (values parsed as TOML)."""
-    import tomllib
-
     out: dict[str, object] = {}
     for item in items or []:
         key, sep, raw = item.partition("=")
         if not sep or not key:
             raise InputError("--set", item, "must look like KEY=VALUE, e.g. quench.time_s=600")
-        try:
-            out[key.strip()] = tomllib.loads(f"v = {raw}")["v"]
-        except tomllib.TOMLDecodeError:
-            out[key.strip()] = raw
+        out[key.strip()] = parse_value(raw)
     return out
 
 

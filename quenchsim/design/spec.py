@@ -50,7 +50,6 @@ import hashlib
 import json
 import math
 import re
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal, cast
@@ -58,11 +57,14 @@ from typing import Any, Literal, cast
 from quenchsim.case import Case, load_case
 from quenchsim.design.quantities import summary_quantities, unknown_quantity_hint
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.declare import Spec, convert, from_table
+from quenchsim.inputs.design import ObjectiveTarget, StudyFile, VariableTable
+from quenchsim.inputs.reader import read_toml, reading
 
-TABLES = ("study", "set", "variables", "objectives", "constraints", "fidelity", "confirm")
-STUDY_KEYS = ("case", "condition", "name", "trials", "startup", "seed", "sampler", "map")
-SAMPLERS = ("tpe", "nsga2", "random")
 VARIABLE_KEYS = {"low", "high", "log", "integer", "step", "choices"}
+"""The keys of a variable's table (a table holding any of them is a variable, not a table of dotted keys)."""
+TOLERANCE = Spec(gt=0.0)
+"""A fidelity tolerance: a number > 0."""
 CONSTRAINT = re.compile(r"^\s*([A-Za-z0-9_.]+)\s*(>=|<=)\s*([-+0-9.eE]+)\s*$")
 
 
@@ -205,48 +207,18 @@ def _flatten(table: dict[str, Any], leaf_keys: set[str], prefix: str = "") -> di
     return out
 
 
-def _int(table: dict[str, Any], key: str, default: int, field_name: str, minimum: int) -> int:
-    value = table.get(key, default)
-    require(isinstance(value, int) and not isinstance(value, bool) and value >= minimum, field_name, value,
-            f"must be an integer >= {minimum}")
-    return value
-
-
-def _number(value: Any, field_name: str, positive: bool = False) -> float:
-    require(isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value), field_name,
-            value, "must be a finite number")
-    require(not positive or value > 0, field_name, value, "must be > 0")
-    return float(value)
-
-
 def _variable(key: str, raw: Any) -> Variable:
+    """The variable of ``[variables]`` key ``key``: ``[low, high]`` or a table (:class:`VariableTable`)."""
     name = f"variables.{key}"
     if isinstance(raw, list):
         require(len(raw) == 2, name, raw, "must be [low, high] or a table { low, high, log, integer, step } or "
                                           "{ choices = [...] }")
         raw = {"low": raw[0], "high": raw[1]}
     require(isinstance(raw, dict), name, raw, "must be [low, high] or a table { low, high, ... } or { choices = [...] }")
-    unknown = set(raw) - VARIABLE_KEYS
-    require(not unknown, f"{name}.{sorted(unknown)[0]}" if unknown else name, None,
-            f"unknown key; a variable takes {', '.join(sorted(VARIABLE_KEYS))}")
-    if "choices" in raw:
-        choices = raw["choices"]
-        require(isinstance(choices, list) and len(choices) >= 2 and len(set(map(repr, choices))) == len(choices),
-                f"{name}.choices", choices, "must be a list of two or more different values")
-        require(set(raw) == {"choices"}, name, raw, "a choice variable takes only 'choices'")
-        return Variable(key, choices=tuple(choices))
-    low, high = _number(raw.get("low"), f"{name}.low"), _number(raw.get("high"), f"{name}.high")
-    require(low < high, name, [low, high], "low must be below high")
-    log, integer = bool(raw.get("log", False)), bool(raw.get("integer", False))
-    require(not log or low > 0, f"{name}.low", low, "must be > 0 for a log-scaled variable")
-    step = raw.get("step")
-    if step is not None:
-        step = _number(step, f"{name}.step", positive=True)
-        require(not log, name, raw, "a stepped variable cannot be log-scaled")
-    if integer:
-        require(float(low).is_integer() and float(high).is_integer(), name, [low, high],
-                "an integer variable needs whole-number bounds")
-    return Variable(key, low=low, high=high, log=log, integer=integer, step=step)
+    table = from_table(VariableTable, raw, name)
+    if table.choices is not None:
+        return Variable(key, choices=table.choices)
+    return Variable(key, low=table.low, high=table.high, log=table.log, integer=table.integer, step=table.step)
 
 
 def _check_bounds(base: Case, var: Variable) -> None:
@@ -265,12 +237,12 @@ def _objective(key: str, raw: Any) -> Objective:
     if raw in ("min", "max"):
         return Objective(key, raw)
     require(isinstance(raw, dict) and set(raw) == {"target"}, name, raw, 'must be "min", "max" or { target = NUMBER }')
-    return Objective(key, "target", _number(raw["target"], f"{name}.target"))
+    return Objective(key, "target", from_table(ObjectiveTarget, raw, name).target)
 
 
 def _constraints(raw: Any) -> list[Constraint]:
     items: list[tuple[str, Any]] = []
-    if isinstance(raw, list):
+    if isinstance(raw, (list, tuple)):
         items = [("constraints", c) for c in raw]
     else:
         require(isinstance(raw, dict), "constraints", raw, 'must be a table of lists of "QUANTITY >= NUMBER" strings')
@@ -305,22 +277,15 @@ def _check_satisfiable(constraints: list[Constraint], known: dict[str, tuple[flo
 
 
 def parse_study(raw: dict[str, Any], base_dir: Path, name: str = "study") -> StudySpec:
-    """Build and check a :class:`StudySpec` from a study table (as read from TOML)."""
-    unknown = set(raw) - set(TABLES)
-    require(not unknown, "study file", sorted(unknown), f"unknown table; a study takes [{'], ['.join(TABLES)}]")
-    head = raw.get("study", {})
-    require(isinstance(head, dict), "study", head, "must be a table")
-    for key in head:
-        require(key in STUDY_KEYS, f"study.{key}", head[key], f"unknown key; [study] takes {', '.join(STUDY_KEYS)}")
-    require(isinstance(head.get("case"), str), "study.case", head.get("case"),
-            "required: the case file (relative to the study file)")
-    case_path = (base_dir / head["case"]).resolve()
-    require(case_path.is_file(), "study.case", head["case"], f"file not found ({case_path})")
-    condition = head.get("condition")
-    fixed = _flatten(raw.get("set", {}), set())
-    case = load_case(case_path, None if condition is None else str(condition), fixed)
+    """Build and check a :class:`StudySpec` from a study table (as read from TOML, :class:`StudyFile`)."""
+    spec = from_table(StudyFile, raw)
+    head = spec.study
+    case_path = (base_dir / head.case).resolve()
+    require(case_path.is_file(), "study.case", head.case, f"file not found ({case_path})")
+    fixed = _flatten(dict(spec.set), set())
+    case = load_case(case_path, None if head.condition is None else str(head.condition), fixed)
 
-    variables = [_variable(k, v) for k, v in _flatten(raw.get("variables", {}), VARIABLE_KEYS).items()]
+    variables = [_variable(k, v) for k, v in _flatten(dict(spec.variables), VARIABLE_KEYS).items()]
     require(len(variables) > 0, "variables", None, "a study needs at least one variable")
     clash = sorted({v.key for v in variables} & set(fixed))
     require(not clash, "variables", clash, "a field may be either in [set] or in [variables]")
@@ -328,22 +293,19 @@ def parse_study(raw: dict[str, Any], base_dir: Path, name: str = "study") -> Stu
         _check_bounds(case, var)
 
     known = summary_quantities(case)
-    objectives = [_objective(k, v) for k, v in _flatten(raw.get("objectives", {}), {"target"}).items()]
+    objectives = [_objective(k, v) for k, v in _flatten(dict(spec.objectives), {"target"}).items()]
     require(len(objectives) > 0, "objectives", None, "a study needs at least one objective")
-    constraints = _constraints(raw.get("constraints", []))
+    constraints = _constraints(spec.constraints)
     goals: list[Objective | Constraint] = [*objectives, *constraints]
     for item in goals:
         section = "objectives" if isinstance(item, Objective) else "constraints"
         require(item.quantity in known, f"{section}.{item.quantity}", item.label(), unknown_quantity_hint(item.quantity, known))
     _check_satisfiable(constraints, known)
 
-    f = raw.get("fidelity", {})
-    require(isinstance(f, dict) and set(f) <= {"mesh", "step", "tolerance"}, "fidelity", f,
-            "takes mesh, step and tolerance")
-    tolerance = _flatten(f.get("tolerance", {}), set())
-    fidelity = Fidelity(mesh=_number(f.get("mesh", 1.0), "fidelity.mesh", positive=True),
-                        step=_number(f.get("step", 1.0), "fidelity.step", positive=True),
-                        tolerance={k: _number(v, f"fidelity.tolerance.{k}", positive=True) for k, v in tolerance.items()})
+    f = spec.fidelity
+    tolerance = {k: convert(v, float, f"fidelity.tolerance.{k}", TOLERANCE)
+                 for k, v in _flatten(dict(f.tolerance), set()).items()}
+    fidelity = Fidelity(mesh=f.mesh, step=f.step, tolerance=tolerance)
     quantities = list(dict.fromkeys(i.quantity for i in goals))
     if fidelity.cheap:
         missing = [q for q in quantities if q not in fidelity.tolerance]
@@ -352,45 +314,27 @@ def parse_study(raw: dict[str, Any], base_dir: Path, name: str = "study") -> Stu
                 "and constraint quantity")
     for q in fidelity.tolerance:
         require(q in quantities, f"fidelity.tolerance.{q}", fidelity.tolerance[q], "is not an objective or constraint quantity")
-    c = raw.get("confirm", {})
-    require(isinstance(c, dict) and set(c) <= {"extra", "uncertainty", "posterior"}, "confirm", c,
-            "takes extra, uncertainty and posterior")
-    uncertainty = _int(c, "uncertainty", 0, "confirm.uncertainty", 0)
-    require(uncertainty != 1, "confirm.uncertainty", 1, "must be 0 (no bands) or >= 2")
-    posterior = c.get("posterior")
-    if posterior is not None:
-        require(isinstance(posterior, str), "confirm.posterior", posterior, "must be a folder path")
-        posterior = (base_dir / posterior).resolve()
-        require(uncertainty >= 2, "confirm.posterior", str(posterior), "needs confirm.uncertainty >= 2")
-    confirm = Confirm(extra=_int(c, "extra", 0, "confirm.extra", 0), uncertainty=uncertainty, posterior=posterior)
-    if uncertainty:
+    c = spec.confirm
+    posterior = None if c.posterior is None else (base_dir / c.posterior).resolve()
+    confirm = Confirm(extra=c.extra, uncertainty=c.uncertainty, posterior=posterior)
+    if c.uncertainty:
         from quenchsim.calibration.propagate import uncertain_inputs
 
-        uncertain_inputs(case, uncertainty, posterior)   # its own checks, before any run
+        uncertain_inputs(case, c.uncertainty, posterior)   # its own checks, before any run
 
-    trials = _int(head, "trials", 24, "study.trials", 1)
-    startup = _int(head, "startup", min(8, trials), "study.startup", 0)
-    require(startup <= trials, "study.startup", startup, f"must be <= study.trials ({trials})")
     numeric = [v.key for v in variables if v.numeric]
-    map_variables = head.get("map", numeric[:2] if len(numeric) >= 2 else [])
-    require(isinstance(map_variables, list) and (len(map_variables) == 2 and set(map_variables) <= set(numeric)
-                                                 or len(numeric) < 2 and not map_variables),
+    map_variables = list(head.map) if head.map is not None else (numeric[:2] if len(numeric) >= 2 else [])
+    require(len(map_variables) == 2 and set(map_variables) <= set(numeric) or len(numeric) < 2 and not map_variables,
             "study.map", map_variables, f"must name two of the numeric variables ({', '.join(numeric)})")
-    sampler = head.get("sampler", "tpe")
-    require(sampler in SAMPLERS, "study.sampler", sampler, f"must be one of {', '.join(SAMPLERS)}")
-    return StudySpec(name=str(head.get("name", name)), case=case, variables=tuple(variables),
+    return StudySpec(name=head.name if head.name is not None else name, case=case, variables=tuple(variables),
                      objectives=tuple(objectives), constraints=tuple(constraints), fidelity=fidelity, confirm=confirm,
-                     trials=trials, startup=startup, seed=_int(head, "seed", 0, "study.seed", 0), sampler=sampler,
+                     trials=head.trials, startup=head.first_trials, seed=head.seed, sampler=head.sampler,
                      fixed=fixed, map_variables=tuple(map_variables))
 
 
 def load_study(path: str | Path) -> StudySpec:
     """Read and check a study file (see the module docstring)."""
     path = Path(path)
-    require(path.is_file(), "study", str(path), "file not found")
-    with path.open("rb") as fh:
-        try:
-            raw = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError("study", str(path), f"is not valid TOML ({exc})") from None
-    return parse_study(raw, path.parent, name=path.stem)
+    raw = read_toml(path, "study")
+    with reading(path):
+        return parse_study(raw, path.parent, name=path.stem)

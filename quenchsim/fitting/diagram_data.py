@@ -57,7 +57,6 @@ there, with a finish line more than 2 % (a finish is 99 % of the final amount: w
 
 from __future__ import annotations
 
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -66,12 +65,14 @@ from typing import Any
 import numpy as np
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.declare import from_table
+from quenchsim.inputs.diagram import CCTEntry, DiagramFile, FitTable, JominyEntry, Numbers, TTTEntry
+from quenchsim.inputs.reader import read_toml, reading
+from quenchsim.inputs.steel import n_exponent_nodes
 from quenchsim.metallurgy.cct import FINISH_SHARE, MIN_FINISH_AMOUNT, START_FRACTION
 from quenchsim.metallurgy.hardness import hrc_to_hv
-from quenchsim.metallurgy.kinetics import C_CURVE_PARAMETERS, N_NODES, n_exponent_nodes
+from quenchsim.metallurgy.kinetics import C_CURVE_PARAMETERS, N_NODES
 
-KINDS = ("printed", "read")
-"""How a point was obtained: a number printed in the source, or read off a figure."""
 REACTIONS = ("ferrite", "pearlite", "bainite")
 """Diffusional reactions a diagram may show (ferrite is accepted in data; quenchsim's steels model pearlite and bainite)."""
 PHASE_NAMES = ("ferrite", "pearlite", "bainite", "martensite", "austenite")
@@ -202,279 +203,226 @@ class DiagramData:
     fit: Mapping[str, ReactionFitSpec] = field(default_factory=dict)
 
 
-class _Reader:
-    """Field access that names the file and the point in every error."""
-
-    def __init__(self, path: Path) -> None:
-        self.path = path
-
-    def error(self, where: str, value: Any, rule: str) -> InputError:
-        return InputError(f"{self.path.name}: {where}", value, rule)
-
-    def number(self, table: Mapping[str, Any], key: str, where: str, default: float | None = None,
-               positive: bool = False) -> float:
-        if key not in table:
-            if default is not None:
-                return default
-            raise self.error(f"{where}.{key}", None, "is required")
-        value = table[key]
-        if isinstance(value, Mapping):
-            value = value.get("value")
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value):
-            raise self.error(f"{where}.{key}", value, "must be a finite number")
-        if positive and value <= 0:
-            raise self.error(f"{where}.{key}", value, "must be > 0")
-        return float(value)
-
-    def text(self, table: Mapping[str, Any], key: str, where: str) -> str:
-        value = table.get(key)
-        if not isinstance(value, str) or not value.strip():
-            raise self.error(f"{where}.{key}", value, "is required (a non-empty string)")
-        return value
-
-    def provenance(self, table: Mapping[str, Any], where: str) -> tuple[str, str]:
-        source = self.text(table, "source", where)
-        kind = table.get("kind")
-        if kind not in KINDS:
-            raise self.error(f"{where}.kind", kind, f"must be one of {KINDS} (a printed number or read off a figure)")
-        return source, kind
-
-    def phases(self, table: Mapping[str, Any], key: str, where: str, allowed: tuple[str, ...]) -> dict[str, float]:
-        spec = table.get(key, {})
-        if not isinstance(spec, Mapping):
-            raise self.error(f"{where}.{key}", spec, "must be a table phase -> value")
-        out = {}
-        for phase, value in spec.items():
-            if phase not in allowed:
-                raise self.error(f"{where}.{key}.{phase}", value, f"unknown phase name; allowed: {', '.join(allowed)}")
-            out[phase] = self.number(spec, phase, f"{where}.{key}")
+def _hardness(hv: Numbers | None, hrc: Numbers | None, where: str, key_hv: str = "hardness_HV",
+              key_hrc: str = "hardness_HRC") -> np.ndarray | None:
+    """The hardness given as HV or HRC (one of them), in HV."""
+    if hv is not None and hrc is not None:
+        raise InputError(where, [key_hrc, key_hv], f"give {key_hv} or {key_hrc}, not both")
+    if hv is not None:
+        return np.atleast_1d(np.asarray(hv, dtype=float))
+    if hrc is not None:
+        values = np.atleast_1d(np.asarray(hrc, dtype=float))
+        out = hrc_to_hv(values)
+        for i, (c, v) in enumerate(zip(values, out)):
+            if not np.isfinite(v):
+                raise InputError(f"{where}.{key_hrc}[{i}]", float(c), "HRC must lie within 20-68 (ASTM E140 table)")
         return out
-
-    def hardness(self, table: Mapping[str, Any], where: str, key_hv: str = "hardness_HV",
-                 key_hrc: str = "hardness_HRC") -> np.ndarray | None:
-        if key_hv in table and key_hrc in table:
-            raise self.error(where, sorted(table), f"give {key_hv} or {key_hrc}, not both")
-        if key_hv in table:
-            return np.atleast_1d(np.asarray(table[key_hv], dtype=float))
-        if key_hrc in table:
-            hrc = np.atleast_1d(np.asarray(table[key_hrc], dtype=float))
-            hv = hrc_to_hv(hrc)
-            for i, (c, v) in enumerate(zip(hrc, hv)):
-                if not np.isfinite(v):
-                    raise self.error(f"{where}.{key_hrc}[{i}]", float(c), "HRC must lie within 20-68 (ASTM E140 table)")
-            return hv
-        return None
-
-    def check_hv(self, hv: float, where: str) -> None:
-        if not HV_RANGE[0] <= hv <= HV_RANGE[1]:
-            raise self.error(where, round(float(hv), 1), f"hardness must lie within {HV_RANGE[0]:.0f}-{HV_RANGE[1]:.0f} HV")
+    return None
 
 
-def _curve(r: _Reader, table: Mapping[str, Any], where: str, T_aust_C: float) -> CoolingCurve:
-    T0 = r.number(table, "T_start_C", where, default=T_aust_C)
-    T1 = r.number(table, "T_end_C", where, default=20.0)
-    given = [k for k in ("cooling_rate_C_s", "t8_5_s", "lambda") if k in table]
+def _check_hv(hv: float, where: str) -> None:
+    if not HV_RANGE[0] <= hv <= HV_RANGE[1]:
+        raise InputError(where, round(float(hv), 1), f"hardness must lie within {HV_RANGE[0]:.0f}-{HV_RANGE[1]:.0f} HV")
+
+
+def _phases(values: Mapping[str, float], key: str, where: str, allowed: tuple[str, ...]) -> dict[str, float]:
+    for phase, value in values.items():
+        if phase not in allowed:
+            raise InputError(f"{where}.{key}.{phase}", value, f"unknown phase name; allowed: {', '.join(allowed)}")
+    return dict(values)
+
+
+def _curve(entry: CCTEntry, where: str, T_aust_C: float) -> CoolingCurve:
+    T0 = entry.T_start_C if entry.T_start_C is not None else T_aust_C
+    T1 = entry.T_end_C
+    given = {k: v for k, v in (("cooling_rate_C_s", entry.cooling_rate_C_s), ("t8_5_s", entry.t8_5_s),
+                               ("lambda", entry.lambda_)) if v is not None}
     if len(given) != 1:
-        raise r.error(where, sorted(table), "give exactly one of cooling_rate_C_s, t8_5_s, lambda")
+        raise InputError(where, sorted(entry._given), "give exactly one of cooling_rate_C_s, t8_5_s, lambda")
     if T0 > T_aust_C:
-        raise r.error(f"{where}.T_start_C", T0, f"a CCT curve starts at or below the austenitising temperature "
-                                               f"T_aust_C = {T_aust_C:g} C")
+        raise InputError(f"{where}.T_start_C", T0, f"a CCT curve starts at or below the austenitising temperature "
+                                                   f"T_aust_C = {T_aust_C:g} C")
     if not T1 < T0:
-        raise r.error(f"{where}.T_end_C", T1, f"a cooling curve must cool: T_end_C must be below T_start_C = {T0:g}")
+        raise InputError(f"{where}.T_end_C", T1, f"a cooling curve must cool: T_end_C must be below T_start_C = {T0:g}")
     if T1 < T_MIN_C:
-        raise r.error(f"{where}.T_end_C", T1, f"must be >= {T_MIN_C:g} C (degrees C)")
-    value = r.number(table, given[0], where)
+        raise InputError(f"{where}.T_end_C", T1, f"must be >= {T_MIN_C:g} C (degrees C)")
+    ((key, value),) = given.items()
     if value <= 0:
-        raise r.error(f"{where}.{given[0]}", value, "a cooling curve must cool: the rate / cooling time must be > 0")
+        raise InputError(f"{where}.{key}", value, "a cooling curve must cool: the rate / cooling time must be > 0")
     lo, hi, unit = {"cooling_rate_C_s": (*RATE_RANGE_C_S, "C/s"), "t8_5_s": (*T85_RANGE_S, "s"),
-                    "lambda": (T85_RANGE_S[0] / 100.0, T85_RANGE_S[1] / 100.0, "(t8/5 in 100 s)")}[given[0]]
+                    "lambda": (T85_RANGE_S[0] / 100.0, T85_RANGE_S[1] / 100.0, "(t8/5 in 100 s)")}[key]
     if not lo <= value <= hi:
-        raise r.error(f"{where}.{given[0]}", value, f"must lie within {lo:g}-{hi:g} {unit} for a CCT curve: is it "
-                                                    "in another unit (C/min, ms)?")
-    if given[0] == "cooling_rate_C_s":
+        raise InputError(f"{where}.{key}", value, f"must lie within {lo:g}-{hi:g} {unit} for a CCT curve: is it "
+                                                  "in another unit (C/min, ms)?")
+    if key == "cooling_rate_C_s":
         return CoolingCurve(T_start_C=T0, T_end_C=T1, rate_C_s=value)
     if not (T1 < NEWTON_T_LOW_C and T0 >= NEWTON_T_HIGH_C):
-        raise r.error(f"{where}.{given[0]}", value, f"t8/5 needs T_start_C >= 800 and T_end_C < 500 (got {T0:g}, {T1:g})")
-    t85 = value if given[0] == "t8_5_s" else 100.0 * value
+        raise InputError(f"{where}.{key}", value, f"t8/5 needs T_start_C >= 800 and T_end_C < 500 (got {T0:g}, {T1:g})")
+    t85 = value if key == "t8_5_s" else 100.0 * value
     theta = t85 / np.log((NEWTON_T_HIGH_C - T1) / (NEWTON_T_LOW_C - T1))
     return CoolingCurve(T_start_C=T0, T_end_C=T1, theta_s=theta)
 
 
-def _cct(r: _Reader, i: int, table: Any, T_aust_C: float) -> CCTPoint:
-    where = f"cct[{i}]"
-    if not isinstance(table, Mapping):
-        raise r.error(where, table, "must be a table")
-    source, kind = r.provenance(table, where)
-    curve = _curve(r, table, where, T_aust_C)
+def _required(value: float | None, where: str, key: str) -> float:
+    if value is None:
+        raise InputError(f"{where}.{key}", None, "is required")
+    return value
+
+
+def _cct(i: int, entry: CCTEntry, T_aust_C: float) -> CCTPoint:
+    curve = _curve(entry, f"cct[{i}]", T_aust_C)
     where = f"cct[{i}] ({curve.label()})"
-    start = r.phases(table, "start_C", where, (*REACTIONS, "martensite"))
-    finish = r.phases(table, "finish_C", where, REACTIONS)
+    start = _phases(entry.start_C, "start_C", where, (*REACTIONS, "martensite"))
+    finish = _phases(entry.finish_C, "finish_C", where, REACTIONS)
     for p, T in finish.items():
         if p in start and not T < start[p]:
-            raise r.error(f"{where}.finish_C.{p}", T, f"finish before start: on cooling the finish must lie below the start ({start[p]:g} C)")
+            raise InputError(f"{where}.finish_C.{p}", T, f"finish before start: on cooling the finish must lie below the "
+                                                          f"start ({start[p]:g} C)")
     for p, T in {**start, **finish}.items():
         if not curve.T_end_C <= T <= curve.T_start_C:
-            raise r.error(f"{where}.{p}", T, f"temperature outside the cooling curve {curve.T_end_C:g}-{curve.T_start_C:g} C")
-    fractions = r.phases(table, "fractions", where, PHASE_NAMES)
+            raise InputError(f"{where}.{p}", T, f"temperature outside the cooling curve {curve.T_end_C:g}-"
+                                                f"{curve.T_start_C:g} C")
+    fractions = _phases(entry.fractions, "fractions", where, PHASE_NAMES)
     for p, x in fractions.items():
         if not 0.0 <= x <= 1.0 + 1e-9:
-            raise r.error(f"{where}.fractions.{p}", x, "a phase fraction must lie within 0-1")
+            raise InputError(f"{where}.fractions.{p}", x, "a phase fraction must lie within 0-1")
     if sum(fractions.values()) > 1.0 + 1e-6:
-        raise r.error(f"{where}.fractions", fractions, "phase fractions must not add up to more than 1")
+        raise InputError(f"{where}.fractions", fractions, "phase fractions must not add up to more than 1")
     for p, T in start.items():
         if p in fractions and fractions[p] < START_FRACTION:
-            raise r.error(f"{where}.fractions.{p}", fractions[p], f"contradicts the {p} line at {T:g} C on this curve "
-                                                                  f"(a start is {START_FRACTION:.0%} transformed): must "
-                                                                  f"be >= {START_FRACTION:g}")
+            raise InputError(f"{where}.fractions.{p}", fractions[p], f"contradicts the {p} line at {T:g} C on this "
+                             f"curve (a start is {START_FRACTION:.0%} transformed): must be >= {START_FRACTION:g}")
     for p, T in finish.items():
         if p in fractions and fractions[p] <= MIN_FINISH_AMOUNT:
-            raise r.error(f"{where}.fractions.{p}", fractions[p], f"contradicts the {p} line at {T:g} C on this curve: "
-                                                                  f"a finish line ({FINISH_SHARE:.0%} of the final "
-                                                                  f"amount) needs more than {MIN_FINISH_AMOUNT:g} of the "
-                                                                  "product (with less it would lie at or above the "
-                                                                  f"{START_FRACTION:.0%} start): drop the finish line")
-    hv = r.hardness(table, where)
+            raise InputError(f"{where}.fractions.{p}", fractions[p], f"contradicts the {p} line at {T:g} C on this "
+                             f"curve: a finish line ({FINISH_SHARE:.0%} of the final amount) needs more than "
+                             f"{MIN_FINISH_AMOUNT:g} of the product (with less it would lie at or above the "
+                             f"{START_FRACTION:.0%} start): drop the finish line")
+    hv = _hardness(entry.hardness_HV, entry.hardness_HRC, where)
     if hv is not None:
-        r.check_hv(hv[0], f"{where}.hardness")
+        _check_hv(hv[0], f"{where}.hardness")
     if not (start or finish or fractions or hv is not None):
-        raise r.error(where, sorted(table), "a CCT curve needs start_C, finish_C, fractions or a hardness")
+        raise InputError(where, sorted(entry._given), "a CCT curve needs start_C, finish_C, fractions or a hardness")
     return CCTPoint(
         where=where, curve=curve, start_C=start, finish_C=finish,
-        temperature_uncertainty_K=r.number(table, "temperature_uncertainty_K", where, positive=True) if (start or finish) else np.nan,
+        temperature_uncertainty_K=_required(entry.temperature_uncertainty_K, where, "temperature_uncertainty_K")
+        if (start or finish) else np.nan,
         fractions=fractions,
-        fraction_uncertainty=r.number(table, "fraction_uncertainty", where, positive=True) if fractions else np.nan,
+        fraction_uncertainty=_required(entry.fraction_uncertainty, where, "fraction_uncertainty")
+        if fractions else np.nan,
         hardness_HV=float(hv[0]) if hv is not None else np.nan,
-        hardness_uncertainty_HV=r.number(table, "hardness_uncertainty_HV", where, positive=True) if hv is not None else np.nan,
-        source=source, kind=kind)
+        hardness_uncertainty_HV=_required(entry.hardness_uncertainty_HV, where, "hardness_uncertainty_HV")
+        if hv is not None else np.nan,
+        source=entry.source, kind=entry.kind)
 
 
-def _series(r: _Reader, table: Mapping[str, Any], keys: tuple[str, ...], where: str) -> list[np.ndarray]:
-    arrays = []
-    for key in keys:
-        if key not in table:
-            raise r.error(f"{where}.{key}", None, "is required")
-        a = np.atleast_1d(np.asarray(table[key], dtype=float))
-        if a.ndim != 1 or not np.all(np.isfinite(a)):
-            raise r.error(f"{where}.{key}", table[key], "must be a number or a list of numbers")
-        arrays.append(a)
+def _series(values: dict[str, Numbers], where: str) -> list[np.ndarray]:
+    arrays = [np.atleast_1d(np.asarray(v, dtype=float)) for v in values.values()]
     if len({a.size for a in arrays}) != 1:
-        raise r.error(where, {k: len(a) for k, a in zip(keys, arrays)}, f"lists {', '.join(keys)} must have equal length")
+        raise InputError(where, {k: len(a) for k, a in zip(values, arrays)},
+                         f"lists {', '.join(values)} must have equal length")
     return arrays
 
 
-def _ttt(r: _Reader, i: int, table: Any, T_aust_C: float) -> list[TTTPoint]:
+def _ttt(i: int, entry: TTTEntry, T_aust_C: float) -> list[TTTPoint]:
     where = f"ttt[{i}]"
-    if not isinstance(table, Mapping):
-        raise r.error(where, table, "must be a table")
-    source, kind = r.provenance(table, where)
-    phase = table.get("phase")
+    phase = entry.phase
     if phase not in REACTIONS:
-        raise r.error(f"{where}.phase", phase, f"unknown phase name; a TTT line belongs to one of {', '.join(REACTIONS)}")
-    factor = r.number(table, "time_uncertainty_factor", where)
-    if not factor > 1.0:
-        raise r.error(f"{where}.time_uncertainty_factor", factor, "must be > 1 (a factor on time)")
-    T, ts, tf = _series(r, table, ("T_C", "t_start_s", "t_finish_s"), where)
+        raise InputError(f"{where}.phase", phase, f"unknown phase name; a TTT line belongs to one of {', '.join(REACTIONS)}")
+    T, ts, tf = _series({"T_C": entry.T_C, "t_start_s": entry.t_start_s, "t_finish_s": entry.t_finish_s}, where)
     points = []
     for k in range(T.size):
         w = f"{where} point {k} (T_C = {T[k]:g})"
         if not T_MIN_C <= T[k] < T_aust_C:
-            raise r.error(f"{w}.T_C", float(T[k]), f"an isothermal hold must lie within {T_MIN_C:g} C and the "
-                                                   f"austenitising temperature T_aust_C = {T_aust_C:g} C")
+            raise InputError(f"{w}.T_C", float(T[k]), f"an isothermal hold must lie within {T_MIN_C:g} C and the "
+                                                      f"austenitising temperature T_aust_C = {T_aust_C:g} C")
         if not ts[k] > 0:
-            raise r.error(f"{w}.t_start_s", float(ts[k]), "must be > 0")
+            raise InputError(f"{w}.t_start_s", float(ts[k]), "must be > 0")
         if not TIME_START_RANGE_S[0] <= ts[k] <= TIME_START_RANGE_S[1]:
-            raise r.error(f"{w}.t_start_s", float(ts[k]), f"must lie within {TIME_START_RANGE_S[0]:g}-"
-                                                          f"{TIME_START_RANGE_S[1]:g} s for a TTT start: is it in ms, "
-                                                          "minutes or hours?")
+            raise InputError(f"{w}.t_start_s", float(ts[k]), f"must lie within {TIME_START_RANGE_S[0]:g}-"
+                                                             f"{TIME_START_RANGE_S[1]:g} s for a TTT start: is it in "
+                                                             "ms, minutes or hours?")
         if not tf[k] > ts[k]:
-            raise r.error(f"{w}.t_finish_s", float(tf[k]), f"finish before start: must be later than t_start_s = {ts[k]:g}")
+            raise InputError(f"{w}.t_finish_s", float(tf[k]), f"finish before start: must be later than t_start_s = "
+                                                              f"{ts[k]:g}")
         if tf[k] > TIME_FINISH_MAX_S:
-            raise r.error(f"{w}.t_finish_s", float(tf[k]), f"must be <= {TIME_FINISH_MAX_S:g} s (the right edge of a "
-                                                           "TTT diagram): is it in ms?")
+            raise InputError(f"{w}.t_finish_s", float(tf[k]), f"must be <= {TIME_FINISH_MAX_S:g} s (the right edge "
+                                                              "of a TTT diagram): is it in ms?")
         points.append(TTTPoint(where=w, phase=phase, T_C=float(T[k]), t_start_s=float(ts[k]), t_finish_s=float(tf[k]),
-                               time_uncertainty_factor=factor, source=source, kind=kind))
+                               time_uncertainty_factor=entry.time_uncertainty_factor, source=entry.source,
+                               kind=entry.kind))
     return points
 
 
-def _jominy(r: _Reader, i: int, table: Any) -> list[JominyPoint]:
+def _jominy(i: int, entry: JominyEntry) -> list[JominyPoint]:
     where = f"jominy[{i}]"
-    if not isinstance(table, Mapping):
-        raise r.error(where, table, "must be a table")
-    source, kind = r.provenance(table, where)
-    (d,) = _series(r, table, ("distance_mm",), where)
-    hv = r.hardness(table, where)
+    (d,) = _series({"distance_mm": entry.distance_mm}, where)
+    hv = _hardness(entry.hardness_HV, entry.hardness_HRC, where)
     if hv is None:
-        raise r.error(where, sorted(table), "needs hardness_HV or hardness_HRC")
+        raise InputError(where, sorted(entry._given), "needs hardness_HV or hardness_HRC")
     if hv.size != d.size:
-        raise r.error(where, {"distance_mm": d.size, "hardness": hv.size}, "distance and hardness lists must have equal length")
-    unc = r.number(table, "hardness_uncertainty_HV", where, positive=True)
+        raise InputError(where, {"distance_mm": d.size, "hardness": hv.size},
+                         "distance and hardness lists must have equal length")
     points = []
     for k in range(d.size):
         w = f"{where} point {k} (distance_mm = {d[k]:g})"
         if not 0.0 < d[k] <= JOMINY_BAR_LENGTH_MM:
-            raise r.error(f"{w}.distance_mm", float(d[k]),
-                          f"Jominy distance beyond the bar: must lie within 0-{JOMINY_BAR_LENGTH_MM:g} mm of the quenched end")
-        r.check_hv(hv[k], f"{w}.hardness")
+            raise InputError(f"{w}.distance_mm", float(d[k]), "Jominy distance beyond the bar: must lie within "
+                                                              f"0-{JOMINY_BAR_LENGTH_MM:g} mm of the quenched end")
+        _check_hv(hv[k], f"{w}.hardness")
         points.append(JominyPoint(where=w, distance_mm=float(d[k]), hardness_HV=float(hv[k]),
-                                  hardness_uncertainty_HV=unc, source=source, kind=kind))
+                                  hardness_uncertainty_HV=entry.hardness_uncertainty_HV, source=entry.source,
+                                  kind=entry.kind))
     return points
 
 
-def _fit_spec(r: _Reader, reaction: str, table: Any) -> ReactionFitSpec:
+def _fit_spec(reaction: str, table: FitTable) -> ReactionFitSpec:
     where = f"fit.{reaction}"
     if reaction not in ("pearlite", "bainite"):
-        raise r.error(where, reaction, "unknown reaction; quenchsim fits pearlite and bainite (c_curve model)")
-    if not isinstance(table, Mapping):
-        raise r.error(where, table, "must be a table")
-    for key in table:
-        if key not in (*FITTABLE, *N_NODES, "T_ref_C", "free", "calibration_tau_factor"):
-            raise r.error(f"{where}.{key}", table[key], f"unknown entry; allowed: {', '.join(FITTABLE)}, n_nodes_T_C, "
-                                                       "T_ref_C, free, calibration_tau_factor")
-    nodes = any(key in table for key in N_NODES)
+        raise InputError(where, reaction, "unknown reaction; quenchsim fits pearlite and bainite (c_curve model)")
+    nodes = table.n_nodes_T_C is not None or table.n_nodes is not None
     exponent = N_NODES if nodes else ("n", "n_per_K")
     for key in ("n", "n_per_K") if nodes else N_NODES:
-        if key in table:
-            raise r.error(f"{where}.{key}", table[key], "give n (and n_per_K) or n_nodes_T_C with n_nodes, not both")
+        if getattr(table, key) is not None:
+            raise InputError(f"{where}.{key}", table._given[key], "give n (and n_per_K) or n_nodes_T_C with n_nodes, "
+                                                                  "not both")
     values: dict[str, Any] = {}   # numbers; the n(T) nodes as tuples (ReactionFitSpec.values)
     sources: dict[str, str] = {}
     for key in ("T_upper_C", "T_ref_C", *C_CURVE_PARAMETERS[:3], *exponent):
-        spec = table.get(key)
-        sources[key] = spec.get("source", "") if isinstance(spec, Mapping) else ""
-        if key == "n_per_K" and key not in table:
+        sources[key] = table.source_of(key)
+        if key == "n_per_K" and table.n_per_K is None:
             values[key], sources[key] = 0.0, "held constant (n independent of T)"
         elif key not in N_NODES:
-            values[key] = r.number(table, key, where)
+            values[key] = _required(getattr(table, key), where, key)
     if nodes:
-        try:
-            checked = n_exponent_nodes(table.get("n_nodes_T_C"), table.get("n_nodes"), where)
-        except InputError as exc:
-            raise r.error(exc.field, exc.value, exc.allowed) from None
+        checked = n_exponent_nodes(table.n_nodes_T_C, table.n_nodes, where)
         values.update({k: tuple(float(x) for x in v) for k, v in checked.items()})
-    free = table.get("free", [])
+    free = list(table.free)
     fittable = [k for k in FITTABLE if k not in ("n", "n_per_K", "n_nodes") or k in exponent]
-    if not isinstance(free, list) or any(p not in fittable for p in free):
-        raise r.error(f"{where}.free", free, f"must list parameters among {', '.join(fittable)}")
+    if any(p not in fittable for p in free):
+        raise InputError(f"{where}.free", free, f"must list parameters among {', '.join(fittable)}")
     if nodes and not sources["n_nodes_T_C"]:
-        raise r.error(f"{where}.n_nodes_T_C", values["n_nodes_T_C"], "the node temperatures need { value = [...], source = ... }")
+        raise InputError(f"{where}.n_nodes_T_C", values["n_nodes_T_C"], "the node temperatures need { value = [...], "
+                                                                         "source = ... }")
     for key in fittable:
         if key not in free and not sources[key]:
-            raise r.error(f"{where}.{key}", values[key], "a parameter the fit holds fixed needs { value = ..., source = ... }")
+            raise InputError(f"{where}.{key}", values[key], "a parameter the fit holds fixed needs { value = ..., "
+                                                            "source = ... }")
     if not values["T_ref_C"] < values["T_upper_C"]:
-        raise r.error(f"{where}.T_ref_C", values["T_ref_C"], f"must lie below T_upper_C = {values['T_upper_C']:g}")
+        raise InputError(f"{where}.T_ref_C", values["T_ref_C"], f"must lie below T_upper_C = {values['T_upper_C']:g}")
     factor, factor_source, factor_range = 1.0, "", None
-    if "calibration_tau_factor" in table:
-        factor = r.number(table, "calibration_tau_factor", where, positive=True)
-        spec = table["calibration_tau_factor"]
-        factor_source = spec.get("source", "") if isinstance(spec, Mapping) else ""
+    if table.calibration_tau_factor is not None:
+        factor = table.calibration_tau_factor
+        factor_source = table.source_of("calibration_tau_factor")
         if not factor_source:
-            raise r.error(f"{where}.calibration_tau_factor", factor, "a calibration factor needs { value = ..., source = ... }")
+            raise InputError(f"{where}.calibration_tau_factor", factor, "a calibration factor needs { value = ..., "
+                                                                        "source = ... }")
+        spec = table._given["calibration_tau_factor"]
         band = spec.get("range") if isinstance(spec, Mapping) else None
         if band is not None:
-            ok = (isinstance(band, list) and len(band) == 2 and all(isinstance(x, (int, float)) and not isinstance(x, bool)
-                                                                    for x in band) and 0 < band[0] <= factor <= band[1])
-            if not ok:
-                raise r.error(f"{where}.calibration_tau_factor.range", band, f"must be [lo, hi] with 0 < lo <= {factor:g} "
-                              "(the factor) <= hi")
+            if not band[0] > 0 or not band[0] <= factor <= band[1]:
+                raise InputError(f"{where}.calibration_tau_factor.range", band, f"must be [lo, hi] with 0 < lo <= "
+                                                                                f"{factor:g} (the factor) <= hi")
             factor_range = (float(band[0]), float(band[1]))
     return ReactionFitSpec(reaction=reaction, T_ref_C=values.pop("T_ref_C"), values=values, sources=sources,
                            free=tuple(free), tau_factor=factor, tau_factor_source=factor_source,
@@ -482,37 +430,31 @@ def _fit_spec(r: _Reader, reaction: str, table: Any) -> ReactionFitSpec:
 
 
 def load_diagram_data(path: str | Path) -> DiagramData:
-    """Read and check a CCT / TTT / Jominy data file."""
+    """Read and check a CCT / TTT / Jominy data file (:class:`quenchsim.inputs.diagram.DiagramFile`); an error names
+    the file, the point and the rule."""
     path = Path(path)
-    r = _Reader(path)
     if not path.is_file():
         raise InputError("data file", str(path), "does not exist")
-    with path.open("rb") as fh:
-        try:
-            raw = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise r.error("file", str(path), f"is not valid TOML ({exc})") from None
-    allowed = {"name", "material", "T_aust_C", "source", "cct", "ttt", "jominy", "fit", "data_from"}
-    for key in raw:
-        if key not in allowed:
-            raise r.error(key, raw[key], f"unknown entry; allowed: {', '.join(sorted(allowed))}")
-    T_aust = r.number(raw, "T_aust_C", "file", positive=True)
+    raw = read_toml(path, "data file")
+    with reading(path.name):
+        return _diagram_data(path, from_table(DiagramFile, raw))
+
+
+def _diagram_data(path: Path, data: DiagramFile) -> DiagramData:
+    T_aust = data.T_aust_C
     if not T_AUST_RANGE_C[0] <= T_aust <= T_AUST_RANGE_C[1]:
-        raise r.error("T_aust_C", T_aust, f"an austenitising temperature must lie within {T_AUST_RANGE_C[0]:g}-"
-                                          f"{T_AUST_RANGE_C[1]:g} C (degrees C, not K or F)")
-    cct = tuple(_cct(r, i, t, T_aust) for i, t in enumerate(raw.get("cct", [])))
-    ttt = tuple(p for i, t in enumerate(raw.get("ttt", [])) for p in _ttt(r, i, t, T_aust))
-    jominy = tuple(p for i, t in enumerate(raw.get("jominy", [])) for p in _jominy(r, i, t))
-    fit = {name: _fit_spec(r, name, t) for name, t in raw.get("fit", {}).items()}
-    included = raw.get("data_from", [])
-    if not isinstance(included, list) or not all(isinstance(x, str) for x in included):
-        raise r.error("data_from", included, "must be a list of data file names (relative to this file)")
-    for name in included:
+        raise InputError("T_aust_C", T_aust, f"an austenitising temperature must lie within {T_AUST_RANGE_C[0]:g}-"
+                                             f"{T_AUST_RANGE_C[1]:g} C (degrees C, not K or F)")
+    cct = tuple(_cct(i, t, T_aust) for i, t in enumerate(data.cct))
+    ttt = tuple(p for i, t in enumerate(data.ttt) for p in _ttt(i, t, T_aust))
+    jominy = tuple(p for i, t in enumerate(data.jominy) for p in _jominy(i, t))
+    fit = {name: _fit_spec(name, t) for name, t in data.fit.items()}
+    for name in data.data_from:
         other = load_diagram_data(path.parent / name)
         if other.T_aust_C != T_aust:
-            raise r.error("data_from", name, f"austenitised at {other.T_aust_C:g} C, this file at {T_aust:g} C")
+            raise InputError("data_from", name, f"austenitised at {other.T_aust_C:g} C, this file at {T_aust:g} C")
         cct, ttt, jominy = cct + other.cct, ttt + other.ttt, jominy + other.jominy
     if not (cct or ttt or jominy):
-        raise r.error("file", sorted(raw), "holds no data: give [[cct]], [[ttt]] or [[jominy]] entries")
-    return DiagramData(path=path, name=r.text(raw, "name", "file"), material=r.text(raw, "material", "file"),
-                       T_aust_C=T_aust, source=r.text(raw, "source", "file"), cct=cct, ttt=ttt, jominy=jominy, fit=fit)
+        raise InputError("file", sorted(data._given), "holds no data: give [[cct]], [[ttt]] or [[jominy]] entries")
+    return DiagramData(path=path, name=data.name, material=data.material, T_aust_C=T_aust, source=data.source, cct=cct,
+                       ttt=ttt, jominy=jominy, fit=fit)

@@ -9,7 +9,6 @@ the surface, at given distances from the quenched end); the kinetics fitter inte
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -18,6 +17,7 @@ import skfem
 from tqdm import tqdm
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.reader import read_toml
 from quenchsim.materials import materials_dir, thermal_properties
 from quenchsim.metallurgy import Kinetics, PhaseModel
 from quenchsim.thermal import AxisymmetricP2, TableHTC, ThermalSolver
@@ -47,8 +47,7 @@ class JominyBar:
 def load_bar(path: Path | None = None) -> JominyBar:
     """The bar description (materials/data/jominy_bar.toml)."""
     path = path or materials_dir() / "data" / "jominy_bar.toml"
-    with path.open("rb") as fh:
-        raw = tomllib.load(fh)
+    raw = read_toml(path, "jominy bar")
     v = lambda key, table=raw: float(table[key]["value"])  # noqa: E731
     end, free = raw["quenched_end"], raw["free_faces"]
     return JominyBar(diameter_m=v("diameter_mm") * 1e-3, length_m=v("length_mm") * 1e-3,

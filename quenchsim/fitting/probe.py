@@ -35,7 +35,8 @@ import skfem
 
 from quenchsim.errors import InputError, SolverError
 from quenchsim.geometry.boundary import BoundaryPoints, SectionExtent
-from quenchsim.materials import ThermalProperties, load_data_file, thermal_properties
+from quenchsim.inputs.quenchant import ProbeFile, read_quenchant
+from quenchsim.materials import ThermalProperties, find_data_file, thermal_properties_of
 from quenchsim.thermal import AxisymmetricP2, NoTransformation, TableHTC, ThermalSolver
 from quenchsim.thermal.steps import StepController
 
@@ -57,14 +58,13 @@ class ProbeSpec:
 
 
 def load_probe(name: str = PROBE_FILE) -> ProbeSpec:
-    """The probe of ``materials/quenchants/NAME.toml`` (``kind = "probe"``)."""
-    data = load_data_file(name, "quenchants", "probe")
-    if data.get("kind") != "probe":
-        raise InputError("probe", name, f"is a {data.get('kind', 'untyped')} file; a probe (kind = \"probe\") is needed")
-    return ProbeSpec(name=str(data.get("name", name)), radius_m=0.5 * float(data["diameter_mm"]) * MM,
-                     length_m=float(data["length_mm"]) * MM, start_temperature_C=float(data["start_temperature_C"]),
-                     bath_temperature_C=float(data["oil_temperature_C"]), properties=thermal_properties(data),
-                     source=str(data.get("source", "")))
+    """The probe of ``materials/quenchants/NAME.toml`` (``kind = "probe"``, :class:`quenchsim.inputs.quenchant.ProbeFile`)."""
+    data = read_quenchant(find_data_file(name, "quenchants", "probe"), "probe")
+    if not isinstance(data, ProbeFile):
+        raise InputError("probe", name, f"is a {data.kind} file; a probe (kind = \"probe\") is needed")
+    return ProbeSpec(name=data.name or name, radius_m=0.5 * data.diameter_mm * MM, length_m=data.length_mm * MM,
+                     start_temperature_C=data.start_temperature_C, bath_temperature_C=data.oil_temperature_C,
+                     properties=thermal_properties_of(data.thermal), source=data.source)
 
 
 def graded_nodes(length_m: float, n: int, ratio: float) -> np.ndarray:

@@ -11,11 +11,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from collections.abc import Mapping
 from typing import Any, cast
 
 import numpy as np
 
-from quenchsim.errors import InputError, require, require_known_keys
+from quenchsim.errors import require
+from quenchsim.inputs.case import Geometry, ProfileGeometry, RectangularGeometry, SphericalOuterGeometry
+from quenchsim.inputs.declare import convert, from_table
 
 MM = 1e-3
 
@@ -208,32 +211,27 @@ def spherical_outer_ring(raceway_diameter_m: float, outer_diameter_m: float, wid
     return Profile(tuple(segs))
 
 
-def general_profile(spec: dict[str, Any], field: str = "geometry") -> Profile:
-    """Profile from ``start_mm = [r, z]`` and ``[[segments]]`` with ``to_mm``, ``name``, optional ``center_mm``."""
-    start: Any = spec.get("start_mm")   # checked by require below
-    require(isinstance(start, list) and len(start) == 2, f"{field}.start_mm", start, "must be [r, z] in mm")
-    items: Any = spec.get("segments")
-    require(isinstance(items, list) and len(items) >= 3, f"{field}.segments", items, "needs >= 3 segments")
+def general_profile(spec: Mapping[str, Any] | ProfileGeometry, field: str = "geometry") -> Profile:
+    """Profile from ``start_mm = [r, z]`` and ``[[segments]]`` with ``to_mm``, ``name``, optional ``center_mm`` (a
+    table as in a case's ``[geometry]``, or its declaration)."""
+    geometry = spec if isinstance(spec, ProfileGeometry) else from_table(ProfileGeometry, {"type": "profile", **spec},
+                                                                         field)
+    start, items = geometry.start_mm, geometry.segments
     segs, here = [], (start[0] * MM, start[1] * MM)
     for i, item in enumerate(items):
         f = f"{field}.segments[{i}]"
-        to = item.get("to_mm")
-        require(isinstance(to, list) and len(to) == 2, f"{f}.to_mm", to, "must be [r, z] in mm")
-        name = item.get("name")
-        require(isinstance(name, str) and name != "", f"{f}.name", name, "must be a non-empty string")
-        end = (to[0] * MM, to[1] * MM)
-        require(end != here, f"{f}.to_mm", to, "must differ from the segment start")
-        center = item.get("center_mm")
-        if center is not None:
-            require(isinstance(center, list) and len(center) == 2, f"{f}.center_mm", center, "must be [r, z] in mm")
-            center = (center[0] * MM, center[1] * MM)
+        end = (item.to_mm[0] * MM, item.to_mm[1] * MM)
+        require(end != here, f"{f}.to_mm", list(item.to_mm), "must differ from the segment start")
+        center = None
+        if item.center_mm is not None:
+            center = (item.center_mm[0] * MM, item.center_mm[1] * MM)
             r0, r1 = math.dist(center, here), math.dist(center, end)
-            require(abs(r0 - r1) <= 1e-6 * max(r0, r1), f"{f}.center_mm", item["center_mm"],
+            require(abs(r0 - r1) <= 1e-6 * max(r0, r1), f"{f}.center_mm", list(item.center_mm),
                     "must be equidistant from the segment's start and end")
-        segs.append(Segment(name, here, end, center))
+        segs.append(Segment(item.name, here, end, center))
         here = end
-    require(math.dist(here, segs[0].start) < 1e-9, f"{field}.segments[{len(items) - 1}].to_mm", items[-1].get("to_mm"),
-            f"the profile must close: last point must equal start_mm = {start}")
+    require(math.dist(here, segs[0].start) < 1e-9, f"{field}.segments[{len(items) - 1}].to_mm", list(items[-1].to_mm),
+            f"the profile must close: last point must equal start_mm = {list(start)}")
     prof = Profile(tuple(segs))
     require(all(p[0] >= -1e-12 for p in prof.polygon(8)), f"{field}.segments", "r < 0", "all points need r >= 0")
     if prof.area_m2() < 0:  # clockwise input: reverse it
@@ -242,41 +240,17 @@ def general_profile(spec: dict[str, Any], field: str = "geometry") -> Profile:
     return prof
 
 
-GEOMETRY_KEYS: dict[str, tuple[str, ...]] = {
-    "rectangular": ("inner_diameter_mm", "outer_diameter_mm", "width_mm", "chamfer_mm", "edge_radius_mm"),
-    "spherical_outer": ("raceway_diameter_mm", "outer_diameter_mm", "width_mm", "chamfer_mm"),
-    "profile": ("start_mm", "segments"),
-}
-"""The keys of ``[geometry]`` by ``type`` (besides ``type`` and ``reference_state``): a misspelt key is an error,
-named before any missing one (docs/reference/case_keys.md)."""
+def profile_from_geometry(geometry: Geometry) -> Profile:
+    """The section of a case's ``[geometry]`` (its declaration, :mod:`quenchsim.inputs.case`; dimensions in mm)."""
+    if isinstance(geometry, RectangularGeometry):
+        return rectangular_ring(geometry.inner_diameter_mm * MM, geometry.outer_diameter_mm * MM,
+                                geometry.width_mm * MM, geometry.chamfer_mm * MM, geometry.edge_radius_mm * MM)
+    if isinstance(geometry, SphericalOuterGeometry):
+        return spherical_outer_ring(geometry.raceway_diameter_mm * MM, geometry.outer_diameter_mm * MM,
+                                    geometry.width_mm * MM, geometry.chamfer_mm * MM)
+    return general_profile(geometry)
 
 
-def profile_from_case(geometry: dict[str, Any]) -> Profile:
-    """Dispatch on ``geometry.type``; dimensions in mm."""
-    kind = geometry.get("type", "rectangular")
-    if kind in GEOMETRY_KEYS:
-        require_known_keys(geometry, ("type", "reference_state", *GEOMETRY_KEYS[kind]), "geometry")
-    g = {k: v for k, v in geometry.items()}
-
-    def mm(key: str, default: float | None = None) -> float:
-        if key not in g:
-            if default is not None:
-                return default
-            raise InputError(f"geometry.{key}", None, "is required")
-        v = g[key]
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-            raise InputError(f"geometry.{key}", v, "must be a finite number (mm)")
-        if v < 0 or (v == 0 and default is None):
-            raise InputError(f"geometry.{key}", v, "must be > 0 (mm)" if default is None else "must be >= 0 (mm)")
-        return float(v) * MM
-
-    if kind == "rectangular":
-        require("inner_diameter_mm" in g, "geometry.inner_diameter_mm", None, "is required (0 for a solid section)")
-        return rectangular_ring(mm("inner_diameter_mm", 0.0), mm("outer_diameter_mm"), mm("width_mm"),
-                                mm("chamfer_mm", 0.0), mm("edge_radius_mm", 0.0))
-    if kind == "spherical_outer":
-        return spherical_outer_ring(mm("raceway_diameter_mm"), mm("outer_diameter_mm"), mm("width_mm"),
-                                    mm("chamfer_mm", 0.0))
-    if kind == "profile":
-        return general_profile(g)
-    raise InputError("geometry.type", kind, "must be 'rectangular', 'spherical_outer' or 'profile'")
+def profile_from_case(geometry: Mapping[str, Any]) -> Profile:
+    """The section of a case's ``[geometry]`` table as read from TOML (checked against its declaration)."""
+    return profile_from_geometry(convert(geometry, Geometry, "geometry"))

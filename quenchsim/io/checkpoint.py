@@ -13,6 +13,7 @@ import os
 import time
 import zipfile
 from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -20,6 +21,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from quenchsim.errors import InputError
+from quenchsim.run_state import Position, RunState, StepCounts
 
 FORMAT_VERSION = 3
 """Written into every checkpoint; a file of another version is not resumed. 2: the stress solver's state since
@@ -127,7 +129,7 @@ def _first_difference(there: Any, here: Any, key: str = "") -> str | None:
     return None if there == here else f"{key}: {there!r} there, {here!r} here"
 
 
-def save_run(run: Any) -> None:
+def save_run(run: RunState) -> None:
     """Write the whole state of ``run`` (:class:`quenchsim.pipeline.QuenchRun`) after its last committed step to its
     checkpoint file (atomically): solvers, phases, stresses, the record so far, position, counts and timings."""
     state = {"thermal": run.thermal.checkpoint_state(),
@@ -135,15 +137,27 @@ def save_run(run: Any) -> None:
              "run": {**run.record.checkpoint_state(), "mesh_p": run.section.mesh.p}}
     if run.stress is not None:
         state.update(run.stress.checkpoint_state())
-    header = {"case": run.case.resolved(), "position": run.position, "counts": run.counts,
+    header = {"case": run.case.resolved(), "position": run.position.as_dict(), "counts": run.counts.as_dict(),
               "frames": run.record.vtk.frames, "wall_time_s": time.perf_counter() - run.wall0,
               "timings_s": run.timings, "time_s": run.thermal.time_s}
     write_checkpoint(run.checkpoint_path, state, header)
 
 
-def restore_run(run: Any, header: dict[str, Any], state: dict[str, Any]) -> dict[str, Any]:
-    """Put a checkpoint's state into the freshly built solvers of ``run``; returns what the run's record needs (its
-    arrays, the frames written, the wall time so far)."""
+@dataclass(frozen=True)
+class Restored:
+    """What a checkpoint gives back to the run beside its solvers' state: its counters and position, the record's
+    arrays, the frames written and the wall time so far (s)."""
+
+    counts: StepCounts
+    position: Position
+    record: dict[str, Any]
+    frames: list[tuple[Any, ...]]
+    wall_time_s: float
+
+
+def restore_run(run: RunState, header: dict[str, Any], state: dict[str, Any]) -> Restored:
+    """Put a checkpoint's state into the freshly built solvers of ``run``; returns the rest for the run to take
+    (:class:`Restored`)."""
     mesh_p = state["run"]["mesh_p"]
     p = run.section.mesh.p
     if mesh_p.shape != p.shape or not np.allclose(mesh_p, p, rtol=0.0, atol=1e-12):
@@ -152,9 +166,6 @@ def restore_run(run: Any, header: dict[str, Any], state: dict[str, Any]) -> dict
     run.thermal.restore_state(state["thermal"], run.phase_model.restore_state(state["phases"]))
     if run.stress is not None:
         run.stress.restore_state(state)
-    run.counts.clear()
-    run.counts.update(header["counts"])
-    run.position = header["position"]
     run.timings.update(header["timings_s"])
-    return {"run": state["run"], "frames": [tuple(f) for f in header["frames"]],
-            "wall_time_s": float(header["wall_time_s"])}
+    return Restored(StepCounts.from_dict(header["counts"]), Position.from_dict(header["position"]), state["run"],
+                    [tuple(f) for f in header["frames"]], float(header["wall_time_s"]))

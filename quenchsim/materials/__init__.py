@@ -25,17 +25,21 @@ from __future__ import annotations
 
 import contextlib
 import os
-import tomllib
-from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.reader import read_toml, reading
 from quenchsim.materials.properties import PHASES, Property, parse_property
 from quenchsim.shipped import shipped_dir
 
-__all__ = ["PHASES", "Property", "parse_property", "materials_dir", "load_material", "ThermalProperties",
+if TYPE_CHECKING:   # the steel's declarations (quenchsim.inputs.steel) read the property forms defined here
+    from quenchsim.inputs.steel import LatentHeat, Steel, Thermal
+
+__all__ = ["PHASES", "Property", "parse_property", "materials_dir", "load_material", "load_steel", "as_steel",
+           "ThermalProperties",
            "thermal_properties", "load_data_file", "find_data_file", "data_folders", "use_data_folders",
            "shipped_data_only", "USER_DATA_FOLDER", "DATA_ENV"]
 
@@ -126,50 +130,80 @@ def find_data_file(name: str, subdir: str | tuple[str, ...] = "", field: str = "
 
 def load_data_file(name: str, subdir: str | tuple[str, ...] = "", field: str = "material") -> dict[str, Any]:
     """The table of data file ``name`` (:func:`find_data_file`)."""
-    path = find_data_file(name, subdir, field)
-    with path.open("rb") as fh:
-        try:
-            return tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError(field, str(path), f"is not valid TOML ({exc})") from None
+    return read_toml(find_data_file(name, subdir, field), field)
 
 
 def load_material(name: str, field: str = "material") -> dict[str, Any]:
     """The raw material table of steel ``name``, with ``NAME.mechanics.toml`` (beside the steel's file) merged as
-    ``"mechanics"`` and the file its ``tempering`` key names (relative to it) as ``"tempering"``."""
+    ``"mechanics"`` and the file its ``tempering`` key names (relative to it) as ``"tempering"`` (the table the
+    calibration scales; the checked steel is :func:`load_steel`)."""
     path = find_data_file(name, field=field)
     data = load_data_file(str(path), field=field)
-    mech_path = path.with_name(f"{path.stem}.mechanics.toml")
+    mech_path = _mechanics_file(path)
     if "mechanics" not in data and mech_path.is_file():
-        with mech_path.open("rb") as fh:
-            data["mechanics"] = tomllib.load(fh)
-    if isinstance(data.get("tempering"), str):
-        # a tempering data file, relative to the steel's file or to a data folder (a steel copied elsewhere keeps
-        # the shipped data); not found, the steel has none (a [temper] is then refused, naming the file)
-        found = [p for p in (path.parent / data["tempering"], *(f / data["tempering"] for f in data_folders()))
-                 if p.is_file()]
-        if found:
-            data["tempering"] = load_data_file(str(found[0]), field=f"{Path(name).stem}.tempering")
+        data["mechanics"] = read_toml(mech_path, f"{field} mechanics")
+    tempering = _tempering_file(path, data)
+    if tempering is not None:
+        data["tempering"] = load_data_file(str(tempering), field=f"{Path(name).stem}.tempering")
     data.setdefault("name", Path(name).stem)
     return data
 
 
-TRANSFORMATIONS = ("austenite", "none")
-"""``transformations`` of a material file: ``"austenite"`` (default: the austenite decomposes on cooling; the file
-needs [kinetics], [hardness] and the martensite data) or ``"none"`` (nothing transforms, e.g. an austenitic or
-nickel alloy: only [thermal] is needed, the run is thermal only and reports no phases and no hardness)."""
+def _mechanics_file(path: Path) -> Path:
+    return path.with_name(f"{path.stem}.mechanics.toml")
 
 
-def transforms(material: dict[str, Any], field: str = "material") -> bool:
+def _tempering_file(path: Path, data: Mapping[str, Any]) -> Path | None:
+    """The tempering data file the steel file ``path`` names (its ``tempering`` key), relative to the steel's file or
+    to a data folder (a steel copied elsewhere keeps the shipped data); None when it names none or it is not found
+    (the steel then has none, and a [temper] is refused naming the file)."""
+    name = data.get("tempering")
+    if not isinstance(name, str):
+        return None
+    found = [p for p in (path.parent / name, *(f / name for f in data_folders())) if p.is_file()]
+    return found[0] if found else None
+
+
+def load_steel(name: str, field: str = "material") -> Steel:
+    """The checked steel ``name`` (:func:`find_data_file`): its file read against its declaration
+    (:class:`quenchsim.inputs.steel.Steel`), its mechanics file beside it and its tempering data resolved. An error
+    names the file at fault (the steel's or its mechanics file)."""
+    from quenchsim.inputs.declare import from_table
+    from quenchsim.inputs.steel import Steel
+    from quenchsim.inputs.steel_mechanics import SteelMechanics
+    from quenchsim.inputs.tempering import TemperingData
+
+    path = find_data_file(name, field=field)
+    table = load_material(name, field)
+    own_file = read_toml(path, field)
+    resolved: dict[str, Any] = {}   # the tables of other files, each read against its declaration in its file
+    mech_path = _mechanics_file(path)
+    if isinstance(table.get("mechanics"), Mapping) and mech_path.is_file() and "mechanics" not in own_file:
+        with reading(mech_path):
+            resolved["mechanics"] = from_table(SteelMechanics, table["mechanics"])
+    tempering_path = _tempering_file(path, own_file)
+    if tempering_path is not None:
+        with reading(tempering_path):
+            resolved["tempering"] = from_table(TemperingData, table["tempering"])
+    own = {k: v for k, v in table.items() if k not in resolved}
+    with reading(path):
+        steel = from_table(Steel, own, path=path, table=table, **resolved)
+    return steel if steel.name else replace(steel, name=path.stem)
+
+
+def as_steel(material: Steel | Mapping[str, Any]) -> Steel:
+    """A steel: ``material`` itself, or the steel of a table built in code (:func:`load_material`'s form, its keys
+    named under its ``name``)."""
+    from quenchsim.inputs.steel import Steel, steel_from_table
+
+    if isinstance(material, Steel):
+        return material
+    return steel_from_table(material, str(material.get("name", "material")))
+
+
+def transforms(material: Steel | Mapping[str, Any], field: str = "material") -> bool:
     """Whether the material's austenite transforms on cooling (its ``transformations`` key, checked)."""
-    value = material.get("transformations", "austenite")
-    name = material.get("name", field)
-    if value not in TRANSFORMATIONS:
-        raise InputError(f"{name}.transformations", value, f"must be one of {', '.join(TRANSFORMATIONS)}")
-    if value == "none" and "mechanics" in material:
-        raise InputError(f"{name}.transformations", value, "a non-transforming material is thermal only: remove its "
-                                                           "mechanics table/file (the stress model needs the phases)")
-    return value != "none"
+    return as_steel(material).transforms
 
 
 @dataclass(frozen=True)
@@ -182,19 +216,21 @@ class ThermalProperties:
     latent_heat_J_kg: dict[str, Property]
 
 
-def thermal_properties(material: dict[str, Any]) -> ThermalProperties:
-    """Parse the ``[thermal]`` and ``[latent_heat]`` tables of a material."""
-    name = material.get("name", "material")
-    thermal = material.get("thermal")
-    if not isinstance(thermal, dict):
-        raise InputError(f"{name}.thermal", thermal, "the material needs a [thermal] table")
-    props = {}
-    for key in ("density_kg_m3", "conductivity_W_mK", "specific_heat_J_kgK"):
-        if key not in thermal:
-            raise InputError(f"{name}.thermal.{key}", None, "is required")
-        props[key] = parse_property(thermal[key], f"{name}.thermal.{key}")
-    latent = {}
-    for phase in PHASES[1:]:
-        spec = material.get("latent_heat", {}).get(f"{phase}_J_kg", 0.0)
-        latent[phase] = parse_property(spec, f"{name}.latent_heat.{phase}_J_kg")
-    return ThermalProperties(latent_heat_J_kg=latent, **props)
+def thermal_properties(material: Steel | Mapping[str, Any]) -> ThermalProperties:
+    """The thermal properties of a steel's ``[thermal]`` and ``[latent_heat]`` tables."""
+    steel = as_steel(material)
+    if steel.thermal is None:
+        raise InputError(f"{steel.name}.thermal", None, "the material needs a [thermal] table")
+    return thermal_properties_of(steel.thermal, steel.latent_heat)
+
+
+def thermal_properties_of(thermal: Thermal, latent: LatentHeat | None = None) -> ThermalProperties:
+    """The thermal properties of a declared ``[thermal]`` table (a steel's, or the ISO 9950 probe's) and latent
+    heats (none by default)."""
+    if latent is None:
+        from quenchsim.inputs.steel import LatentHeat
+
+        latent = LatentHeat()
+    return ThermalProperties(density_kg_m3=thermal.density_kg_m3, conductivity_W_mK=thermal.conductivity_W_mK,
+                             specific_heat_J_kgK=thermal.specific_heat_J_kgK,
+                             latent_heat_J_kg={phase: getattr(latent, f"{phase}_J_kg") for phase in PHASES[1:]})

@@ -14,9 +14,9 @@ Public API::
 from quenchsim.mechanics.budget import distortion_budget
 from quenchsim.mechanics.dimensions import dimension_change, ring_dimensions, section_area_mm2, section_outline
 from quenchsim.mechanics.loads import surface_load
-from quenchsim.mechanics.model import (OPTION_KEYS, MechanicsModel, austenitized_scale, free_strain, load_mechanics,
+from quenchsim.mechanics.model import (MechanicsModel, austenitized_scale, free_strain, load_mechanics,
                                       solver_options)
 from quenchsim.mechanics.solver import MechanicsSolver, StepInfo
 
-__all__ = ["OPTION_KEYS", "MechanicsModel", "MechanicsSolver", "StepInfo", "load_mechanics", "solver_options", "free_strain", "ring_dimensions",
+__all__ = ["MechanicsModel", "MechanicsSolver", "StepInfo", "load_mechanics", "solver_options", "free_strain", "ring_dimensions",
            "dimension_change", "section_outline", "section_area_mm2", "distortion_budget", "surface_load", "austenitized_scale"]

@@ -1,5 +1,5 @@
-"""Mechanical material model: parsing of ``materials/NAME.mechanics.toml`` and the free (thermal +
-structural) strain of a phase mixture.
+"""Mechanical material model: built from a steel's mechanics data (``materials/NAME.mechanics.toml``, declared and
+checked in :mod:`quenchsim.inputs.steel_mechanics`), and the free (thermal + structural) strain of a phase mixture.
 
 Two forms of the free strain are accepted (``[free_strain] form``):
 
@@ -27,26 +27,23 @@ update of the second.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, cast
 
 import numpy as np
 
-from quenchsim.errors import InputError, require_known_keys
-from quenchsim.materials import PHASES, Property, parse_property
-
-FREE_STRAIN_FORMS = ("specific_volume", "expansion")
-TRIP_LAWS = ("desalos", "leblond")
-OPTION_KEYS = ("plasticity", "trip", "austenitizing_T_C", "newton_rtol", "max_newton_iterations")
+from quenchsim.errors import InputError
+from quenchsim.inputs.case import SolverOptions
+from quenchsim.inputs.declare import from_table
+from quenchsim.inputs.steel_mechanics import MetastableFactor, SpecificVolumeStrain, SteelMechanics
+from quenchsim.inputs.steel import Steel
+from quenchsim.materials import PHASES, Property, as_steel
 
 TRIP_K_BOUNDS_1_PA = (1e-12, 1e-9)
 """Plausible TRIP constants of the product phases (1/Pa); the published ranges for steels are 4-21e-11
 (DEFORM manual, section 10.9, TRNSFP: 4-13e-5 /MPa diffusive, 5-21e-5 /MPa martensitic)."""
-PRIOR_KEYS = ("range", "range_factor")
-"""Uncertain values carry a prior for calibration: ``{ value = v, range = [lo, hi], source = ... }`` (lo <= v <= hi)
-or ``range_factor = f >= 1`` (the value times/divided by f) on any property table or per-phase entry; the run uses
-the value."""
 
 LEBLOND_CUTOFF = 0.03
 """Leblond's TRIP kinetics use -ln(f); below f = 0.03 the slope is frozen at -ln(0.03)
@@ -188,84 +185,61 @@ def trip_saturation(law: str, f: np.ndarray) -> np.ndarray:
                     f_safe * (1.0 - np.log(f_safe)) - LEBLOND_CUTOFF)
 
 
-def _property(table: Mapping[str, Any], key: str, prefix: str) -> Property:
-    if key not in table:
-        raise InputError(f"{prefix}.{key}", None, "is required")
-    return parse_property(table[key], f"{prefix}.{key}")
-
-
 METASTABLE_KEY = "metastable_austenite_yield_factor"
 """Optional [plastic] entry ``{ value, below_T_C, range_factor, source }``: a factor on the austenite yield table's
 points below ``below_T_C`` -- the metastable austenite of a quench, where no hot test applies and the row is an
 assumption -- so that the calibration can move that part alone (its own, wider prior) and leave the sourced hot part."""
 
 
-def metastable_austenite_scaled(plastic: Mapping[str, Any], prefix: str) -> Mapping[str, Any]:
-    """The [plastic] table with the austenite yield points below ``below_T_C`` times :data:`METASTABLE_KEY`'s
-    value (unchanged without that entry). The table interpolates between the last scaled and the first kept point.
+def metastable_austenite_scaled(yield_Pa: Property, factor: MetastableFactor | None, where: str) -> Property:
+    """The yield stress with the austenite table's points below ``factor.below_T_C`` times ``factor.value``
+    (unchanged without a factor). The table interpolates between the last scaled and the first kept point.
 
+    >>> from quenchsim.inputs.properties import read_property
     >>> row = {"T_C": [20.0, 700.0, 750.0], "value": [300e6, 88e6, 81e6]}
-    >>> p = {"yield_Pa": {"per_phase": {"austenite": row}},
-    ...      METASTABLE_KEY: {"value": 2.0, "below_T_C": 750.0, "range_factor": 3.0}}
-    >>> metastable_austenite_scaled(p, "plastic")["yield_Pa"]["per_phase"]["austenite"]["value"]
+    >>> scaled = metastable_austenite_scaled(read_property({"per_phase": {"default": 1e9, "austenite": row}}, "y"),
+    ...                                      MetastableFactor(value=2.0, below_T_C=750.0), "plastic")
+    >>> scaled.for_phase("austenite").values.tolist()
     [600000000.0, 176000000.0, 81000000.0]
     """
-    if METASTABLE_KEY not in plastic:
-        return plastic
-    where = f"{prefix}.{METASTABLE_KEY}"
-    factor = _number(plastic, METASTABLE_KEY, prefix, 1e-3, 1e3)
-    entry = plastic[METASTABLE_KEY]
-    below = _number(entry, "below_T_C", where, -273.15, 2000.0) if isinstance(entry, Mapping) else None
-    if below is None:
-        raise InputError(f"{where}.below_T_C", None, "is required: the temperature below which the factor applies")
-    row = plastic.get("yield_Pa", {}).get("per_phase", {}).get("austenite") if isinstance(plastic.get("yield_Pa"), Mapping) else None
-    if not (isinstance(row, Mapping) and isinstance(row.get("T_C"), list) and isinstance(row.get("value"), list)):
-        raise InputError(where, factor, "needs yield_Pa.per_phase.austenite as a T_C / value table")
-    scaled = dict(row, value=[v * factor if T < below else v for T, v in zip(row["T_C"], row["value"])])
-    per_phase = dict(plastic["yield_Pa"]["per_phase"], austenite=scaled)
-    return dict(plastic, yield_Pa=dict(plastic["yield_Pa"], per_phase=per_phase))
+    if factor is None:
+        return yield_Pa
+    row = yield_Pa.for_phase("austenite") if yield_Pa.phase_dependent and "austenite" in yield_Pa.phases else None
+    if row is None or row.kind != "table":
+        raise InputError(f"{where}.{METASTABLE_KEY}", factor.value,
+                         "needs yield_Pa.per_phase.austenite as a T_C / value table")
+    T, values = cast(np.ndarray, row.T_C), cast(np.ndarray, row.values)
+    scaled = dataclasses.replace(row, values=np.where(T < factor.below_T_C, values * factor.value, values))
+    return dataclasses.replace(yield_Pa, phases={**yield_Pa.phases, "austenite": scaled})
 
 
-def _table(data: Mapping[str, Any], key: str, prefix: str) -> Mapping[str, Any]:
-    sub = data.get(key)
-    if not isinstance(sub, Mapping):
-        raise InputError(f"{prefix}.{key}", sub, "a table is required")
-    return sub
+def solver_options(options: Mapping[str, Any] | SolverOptions | None) -> SolverOptions:
+    """The stress solver's options checked, names and values (:class:`quenchsim.inputs.case.SolverOptions`:
+    ``plasticity`` and ``trip`` (true), ``austenitizing_T_C`` (None: the mechanics file's), ``newton_rtol`` (1e-8),
+    ``max_newton_iterations`` (25)); errors name ``mechanics.<key>``."""
+    if isinstance(options, SolverOptions):
+        return options
+    return from_table(SolverOptions, dict(options or {}), "mechanics")
 
 
-def _number(table: Mapping[str, Any], key: str, prefix: str, lo: float = -np.inf, hi: float = np.inf) -> float:
-    value = table.get(key)
-    if isinstance(value, Mapping):
-        value = value.get("value")
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not lo <= float(value) <= hi:
-        raise InputError(f"{prefix}.{key}", value, f"must be a number in [{lo}, {hi}]")
+def _carbon(spec: float | str, key: str, prefix: str, steel: Steel, T_aust_C: float) -> float:
+    """A carbon content: a number, or "composition" (bulk C of the steel's [composition]), or "austenitisation"
+    (C dissolved in austenite at T_aust, :meth:`quenchsim.inputs.steel.Austenitisation.dissolved_at` -- the value the
+    metallurgy uses)."""
+    if not isinstance(spec, str):
+        return float(spec)
+    value = None
+    if spec == "composition" and steel.composition is not None:
+        value = steel.composition.C
+    elif spec == "austenitisation" and steel.austenitisation is not None and steel.composition is not None:
+        value = steel.austenitisation.dissolved_at(T_aust_C, steel.composition.wt)["C"]
+    if value is None or not 0.0 <= value <= 2.1:
+        raise InputError(f"{prefix}.{key}", spec, f"resolves to {value!r}, not a carbon content in [0, 2.1] wt% (the "
+                         "steel needs its [composition] and [austenitisation])")
     return float(value)
 
 
-def _carbon(fs: Mapping[str, Any], key: str, prefix: str, material: Mapping[str, Any], T_aust_C: float) -> float:
-    """A carbon content: a number, or "composition" (bulk C of the material's [composition]), or
-    "austenitisation" (C dissolved in austenite at T_aust, interpolated in the material's
-    [austenitisation] dissolved_wt.C over T_aust_C -- the value the metallurgy uses)."""
-    spec = fs.get(key)
-    if isinstance(spec, Mapping):
-        spec = spec.get("value")
-    if spec == "composition":
-        value = material.get("composition", {}).get("C")
-    elif spec == "austenitisation":
-        aus = material.get("austenitisation", {})
-        try:
-            value = float(np.interp(T_aust_C, np.asarray(aus["T_aust_C"], dtype=float),
-                                    np.asarray(aus["dissolved_wt"]["C"], dtype=float)))
-        except (KeyError, TypeError, ValueError):
-            raise InputError(f"{prefix}.{key}", spec, "the material has no [austenitisation] T_aust_C + dissolved_wt.C") from None
-    else:
-        return _number(fs, key, prefix, 0.0, 2.1)
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0.0 <= value <= 2.1:
-        raise InputError(f"{prefix}.{key}", spec, f"resolves to {value!r}, not a carbon content in [0, 2.1] wt%")
-    return float(value)
-
-
-def _volume_changes(fs: Mapping[str, Any], prefix: str, material: Mapping[str, Any], T_aust_C: float) -> dict[str, float]:
+def _volume_changes(fs: SpecificVolumeStrain, prefix: str, steel: Steel, T_aust_C: float) -> dict[str, float]:
     """dV/V of austenite -> phase at reference_T_C, diluted by the undissolved carbide.
 
     The matrix of the austenite holds carbon_matrix_wt_pct; the rest of the carbon stays as
@@ -273,172 +247,82 @@ def _volume_changes(fs: Mapping[str, Any], prefix: str, material: Mapping[str, A
     part in any transformation, so dV/V of the mixture is (1 - phi_c) (a_i + b_i C_m)/100 with the
     carbide volume fraction phi_c = w_c * rho_steel/rho_cementite.
     """
-    c_bulk = _carbon(fs, "carbon_bulk_wt_pct", prefix, material, T_aust_C)
-    c_m = _carbon(fs, "carbon_matrix_wt_pct", prefix, material, T_aust_C)
+    c_bulk = _carbon(fs.carbon_bulk_wt_pct, "carbon_bulk_wt_pct", prefix, steel, T_aust_C)
+    c_m = _carbon(fs.carbon_matrix_wt_pct, "carbon_matrix_wt_pct", prefix, steel, T_aust_C)
     if c_m > c_bulk:
         raise InputError(f"{prefix}.carbon_matrix_wt_pct", c_m, f"must not exceed carbon_bulk_wt_pct = {c_bulk}")
-    c_cem = _number(fs, "cementite_carbon_wt_pct", prefix, c_bulk, 100.0)
-    ratio = _number(fs, "steel_to_cementite_density_ratio", prefix, 0.5, 2.0)
-    phi_c = (c_bulk - c_m) / (c_cem - c_m) * ratio
-    table = _table(fs, "volume_change_pct", prefix)
+    c_cem = fs.cementite_carbon_wt_pct
+    if c_cem < c_bulk:
+        raise InputError(f"{prefix}.cementite_carbon_wt_pct", c_cem, f"must be >= carbon_bulk_wt_pct = {c_bulk}")
+    phi_c = (c_bulk - c_m) / (c_cem - c_m) * fs.steel_to_cementite_density_ratio
     out = {"austenite": 0.0}
     for phase in PHASES[1:]:
-        coeffs = table.get(phase)
-        if isinstance(coeffs, Mapping):
-            coeffs = coeffs.get("value")
-        if (not isinstance(coeffs, (list, tuple)) or len(coeffs) != 2
-                or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in coeffs)):
-            raise InputError(f"{prefix}.volume_change_pct.{phase}", coeffs, "must be [a, b] with dV/V (%) = a + b*C")
-        out[phase] = (1.0 - phi_c) * (coeffs[0] + coeffs[1] * c_m) / 100.0
+        a, b = getattr(fs.volume_change_pct, phase)
+        out[phase] = (1.0 - phi_c) * (a + b * c_m) / 100.0
     return out
 
 
-def solver_options(options: Mapping[str, Any] | None) -> dict[str, Any]:
-    """The case's ``[mechanics]`` solver options (:data:`OPTION_KEYS`) checked, names and values, with their
-    defaults: ``plasticity`` and ``trip`` (true), ``austenitizing_T_C`` (None: the material file's),
-    ``newton_rtol`` (1e-8), ``max_newton_iterations`` (25). Errors name ``mechanics.<key>``; the case is checked
-    with this when it loads (:mod:`quenchsim.case.parse`), the model is built with it."""
-    options = dict(options or {})
-    require_known_keys(options, OPTION_KEYS, "mechanics")
-    for key in ("plasticity", "trip"):
-        if not isinstance(options.get(key, True), bool):
-            raise InputError(f"mechanics.{key}", options[key], "must be true or false")
-    return {"plasticity": options.get("plasticity", True), "trip": options.get("trip", True),
-            "austenitizing_T_C": (_number(options, "austenitizing_T_C", "mechanics", 500.0, 1300.0)
-                                  if "austenitizing_T_C" in options else None),
-            "newton_rtol": _number(options, "newton_rtol", "mechanics", 1e-14, 1e-2) if "newton_rtol" in options
-            else 1e-8,
-            "max_newton_iterations": int(_number(options, "max_newton_iterations", "mechanics", 1, 1000))
-            if "max_newton_iterations" in options else 25}
+def load_mechanics(material: Steel | Mapping[str, Any], options: Mapping[str, Any] | SolverOptions | None = None
+                   ) -> MechanicsModel:
+    """Build the :class:`MechanicsModel` from a steel's mechanics data (:class:`quenchsim.inputs.steel_mechanics.
+    SteelMechanics`, its ``NAME.mechanics.toml``) and the stress solver's options (:func:`solver_options`).
 
-
-def load_mechanics(material: Mapping[str, Any], options: Mapping[str, Any] | None = None) -> MechanicsModel:
-    """Build the :class:`MechanicsModel` from ``material["mechanics"]`` and the case ``[mechanics]`` options.
-
-    Options: ``plasticity`` (bool, default true), ``trip`` (bool, default true),
-    ``austenitizing_T_C`` (stress-free temperature; default the material file's
-    ``[reference] austenitizing_T_C``), ``newton_rtol`` (default 1e-8), ``max_newton_iterations``
-    (default 25).  Thermo-elastic mode = plasticity and trip false.  Errors name the field
-    (``NAME.mechanics.<field>``: the file materials/NAME.mechanics.toml and the key); priors
-    (:data:`PRIOR_KEYS`) are checked by :func:`check_priors`, the data by :func:`check_data`.
+    Thermo-elastic mode = plasticity and trip false. Errors name the field (``NAME.mechanics.<field>``: the file
+    materials/NAME.mechanics.toml and the key); the data are checked over the quench's temperatures by
+    :func:`check_data`.
     """
-    options = dict(options or {})
-    name = str(material.get("name", "material"))
-    mech = material.get("mechanics")
+    steel = as_steel(material)
+    name = steel.name
     prefix = f"{name}.mechanics"
-    if not isinstance(mech, Mapping):
-        raise InputError(prefix, mech, f"material needs materials/{name}.mechanics.toml (or a [mechanics] table)")
-    check_priors(mech, prefix)
+    mech = steel.mechanics
+    if mech is None:
+        raise InputError(prefix, None, f"material needs materials/{name}.mechanics.toml (or a [mechanics] table)")
     checked = solver_options(options)
-    plasticity, trip = checked["plasticity"], checked["trip"]
-
-    reference = _table(mech, "reference", prefix)
-    T_aust = (checked["austenitizing_T_C"] if checked["austenitizing_T_C"] is not None
-              else _number(reference, "austenitizing_T_C", f"{prefix}.reference", 500.0, 1300.0))
-    newton_rtol, max_it = checked["newton_rtol"], checked["max_newton_iterations"]
-
-    elastic = _table(mech, "elastic", prefix)
-    E = _property(elastic, "E_Pa", f"{prefix}.elastic")
-    nu = _property(elastic, "nu", f"{prefix}.elastic")
-
-    model_args = dict(name=name, austenitizing_T_C=T_aust, E_Pa=E, nu=nu,
-                      **_free_strain_args(mech, prefix, material, T_aust),
-                      annealed_free_strain=0.0, plasticity=plasticity,
-                      yield_Pa=None, hardening_Pa=None, hardening_memory=0.0, trip=trip,
-                      trip_K_1_Pa=None, trip_law="desalos", newton_rtol=newton_rtol,
-                      max_newton_iterations=max_it)
-    model_args["annealed_free_strain"] = _annealed_free_strain(mech, prefix, model_args)
-    if plasticity:
-        model_args.update(_plastic_args(mech, name, prefix))
-    if trip:
-        model_args.update(_trip_args(mech, name, prefix))
+    T_aust = (checked.austenitizing_T_C if checked.austenitizing_T_C is not None
+              else mech.reference.austenitizing_T_C)
+    model_args = dict(name=name, austenitizing_T_C=T_aust, E_Pa=mech.elastic.E_Pa, nu=mech.elastic.nu,
+                      **_free_strain_args(mech, prefix, steel, T_aust),
+                      annealed_free_strain=0.0, plasticity=checked.plasticity,
+                      yield_Pa=None, hardening_Pa=None, hardening_memory=0.0, trip=checked.trip,
+                      trip_K_1_Pa=None, trip_law="desalos", newton_rtol=checked.newton_rtol,
+                      max_newton_iterations=checked.max_newton_iterations)
+    model_args["annealed_free_strain"] = _annealed_free_strain(mech, model_args)
+    if checked.plasticity:
+        if mech.plastic is None:
+            raise InputError("mechanics.plasticity", True, f"{name} has no [plastic] table; set plasticity = false")
+        model_args.update(yield_Pa=metastable_austenite_scaled(mech.plastic.yield_Pa,
+                                                               mech.plastic.metastable_austenite_yield_factor,
+                                                               f"{prefix}.plastic"),
+                          hardening_Pa=mech.plastic.hardening_Pa, hardening_memory=mech.plastic.hardening_memory)
+    if checked.trip:
+        if mech.trip is None:
+            raise InputError("mechanics.trip", True, f"{name} has no [trip] table; set trip = false")
+        model_args.update(trip_K_1_Pa=mech.trip.K_1_Pa, trip_law=mech.trip.law)
     model = MechanicsModel(**model_args)
     check_data(model, prefix)
     return model
 
 
-def _free_strain_args(mech: Mapping[str, Any], prefix: str, material: Mapping[str, Any], T_aust: float
-                      ) -> dict[str, Any]:
+def _free_strain_args(mech: SteelMechanics, prefix: str, steel: Steel, T_aust: float) -> dict[str, Any]:
     """The free-strain fields of :class:`MechanicsModel` from the ``[free_strain]`` table (its form, expansion,
     reference temperature, and the volume changes or the transformation strain)."""
-    fs_prefix = f"{prefix}.free_strain"
-    fs = _table(mech, "free_strain", prefix)
-    form = fs.get("form")
-    if form not in FREE_STRAIN_FORMS:
-        raise InputError(f"{fs_prefix}.form", form, f"must be one of {FREE_STRAIN_FORMS}")
-    alpha = _property(fs, "alpha_1_K", fs_prefix)
-    if alpha.phase_dependent and any(alpha.for_phase(p).phase_dependent for p in PHASES):
-        raise InputError(f"{fs_prefix}.alpha_1_K", "nested per_phase", "per-phase entries must be constants, tables or polynomials")
-    if form == "specific_volume":
-        volume_change = _volume_changes(fs, fs_prefix, material, T_aust)
-        gamma = None
-        ref_T = _number(fs, "reference_T_C", fs_prefix, -273.15, 1500.0)
-    else:
-        volume_change = {}
-        gamma = _property(fs, "transformation_strain", fs_prefix)
-        ref_T = T_aust
-    return dict(free_strain_form=form, alpha_1_K=alpha, reference_T_C=ref_T, volume_change=volume_change,
-                transformation_strain=gamma)
+    fs = mech.free_strain
+    if isinstance(fs, SpecificVolumeStrain):
+        return dict(free_strain_form=fs.form, alpha_1_K=fs.alpha_1_K, reference_T_C=fs.reference_T_C,
+                    volume_change=_volume_changes(fs, f"{prefix}.free_strain", steel, T_aust),
+                    transformation_strain=None)
+    return dict(free_strain_form=fs.form, alpha_1_K=fs.alpha_1_K, reference_T_C=T_aust, volume_change={},
+                transformation_strain=fs.transformation_strain)
 
 
-def _annealed_free_strain(mech: Mapping[str, Any], prefix: str, model_args: dict[str, Any]) -> float:
+def _annealed_free_strain(mech: SteelMechanics, model_args: dict[str, Any]) -> float:
     """The free strain of the annealed (room-temperature, pre-quench) state: given, or that of the ``[annealed]``
-    phase at its temperature (specific-volume form)."""
-    annealed = _table(mech, "annealed", prefix)
-    if "free_strain" in annealed:
-        return _number(annealed, "free_strain", f"{prefix}.annealed", -0.1, 0.1)
-    if model_args["free_strain_form"] == "specific_volume":
-        phase = annealed.get("phase")
-        if phase not in PHASES:
-            raise InputError(f"{prefix}.annealed.phase", phase, f"must be one of {PHASES} (or give free_strain)")
-        T_ann = _number(annealed, "T_C", f"{prefix}.annealed", -273.15, 1500.0)
-        provisional = MechanicsModel(**model_args)
-        return float(phase_free_strain(provisional, phase, T_ann))
-    raise InputError(f"{prefix}.annealed.free_strain", None, "is required for the expansion form")
-
-
-def _plastic_args(mech: Mapping[str, Any], name: str, prefix: str) -> dict[str, Any]:
-    """Yield stress, hardening modulus and hardening memory from the ``[plastic]`` table."""
-    if not isinstance(mech.get("plastic"), Mapping):
-        raise InputError("mechanics.plasticity", True, f"{name} has no [plastic] table; set plasticity = false")
-    plastic = metastable_austenite_scaled(_table(mech, "plastic", prefix), f"{prefix}.plastic")
-    return {"yield_Pa": _property(plastic, "yield_Pa", f"{prefix}.plastic"),
-            "hardening_Pa": _property(plastic, "hardening_Pa", f"{prefix}.plastic"),
-            "hardening_memory": _number(plastic, "hardening_memory", f"{prefix}.plastic", 0.0, 1.0)}
-
-
-def _trip_args(mech: Mapping[str, Any], name: str, prefix: str) -> dict[str, Any]:
-    """Greenwood-Johnson coefficients and saturation law from the ``[trip]`` table."""
-    if not isinstance(mech.get("trip"), Mapping):
-        raise InputError("mechanics.trip", True, f"{name} has no [trip] table; set trip = false")
-    trip_table = _table(mech, "trip", prefix)
-    K = _property(trip_table, "K_1_Pa", f"{prefix}.trip")
-    law = trip_table.get("law", "desalos")
-    if law not in TRIP_LAWS:
-        raise InputError(f"{prefix}.trip.law", law, f"must be one of {TRIP_LAWS}")
-    return {"trip_K_1_Pa": K, "trip_law": law}
-
-
-def check_priors(spec: Any, field: str) -> None:
-    """Every ``range`` / ``range_factor`` in a material table (recursively): range = [lo, hi] numbers with
-    lo <= hi holding the value when the value is a number; range_factor a number >= 1."""
-    if isinstance(spec, Mapping):
-        if "range" in spec:
-            rng = spec["range"]
-            ok = (isinstance(rng, (list, tuple)) and len(rng) == 2
-                  and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in rng) and rng[0] <= rng[1])
-            if not ok:
-                raise InputError(f"{field}.range", rng, "must be [lo, hi] numbers with lo <= hi")
-            value = spec.get("value")
-            if isinstance(value, (int, float)) and not isinstance(value, bool) and not rng[0] <= value <= rng[1]:
-                raise InputError(f"{field}.value", value, f"must lie in its range [{rng[0]}, {rng[1]}]")
-        if "range_factor" in spec:
-            f = spec["range_factor"]
-            if isinstance(f, bool) or not isinstance(f, (int, float)) or f < 1.0:
-                raise InputError(f"{field}.range_factor", f, "must be a number >= 1")
-        for key, sub in spec.items():
-            if key not in PRIOR_KEYS:
-                check_priors(sub, f"{field}.{key}")
+    phase at its temperature (specific-volume form; the declaration requires the phase and temperature then)."""
+    annealed = mech.annealed
+    if annealed.free_strain is not None:
+        return annealed.free_strain
+    provisional = MechanicsModel(**model_args)
+    return float(phase_free_strain(provisional, cast(str, annealed.phase), cast(float, annealed.T_C)))
 
 
 def _phase_values(prop: Property, phase: str, T_C: np.ndarray) -> np.ndarray:

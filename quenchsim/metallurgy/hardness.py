@@ -8,12 +8,12 @@ Points that have not crossed 700 C yet (V_r unknown) and rates below 1 degC/h us
 
 from __future__ import annotations
 
-import tomllib
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
+from quenchsim.inputs.reader import read_toml
 from quenchsim.metallurgy.kinetics import Kinetics
 from quenchsim.metallurgy.laws import maynier_hv
 from quenchsim.metallurgy.transform import PhaseState
@@ -38,8 +38,7 @@ def hardness_HV(state: PhaseState, kin: Kinetics) -> np.ndarray:
 
 @lru_cache(maxsize=1)
 def _conversion_table() -> tuple[np.ndarray, np.ndarray]:
-    with CONVERSION_TABLE.open("rb") as fh:
-        data = tomllib.load(fh)
+    data = read_toml(CONVERSION_TABLE, "hardness conversion table")
     return np.asarray(data["HV"], dtype=float), np.asarray(data["HRC"], dtype=float)
 
 

@@ -1,8 +1,7 @@
-"""Transformation kinetics of one steel at one austenitising temperature, built from a material file.
+"""Transformation kinetics of one steel at one austenitising temperature, built from a steel file.
 
-The ``[austenitisation]``, ``[kinetics]`` and ``[hardness]`` tables of ``materials/NAME.toml`` are
-parsed here into a :class:`Kinetics` (see the material files for the schema, which is documented in
-:func:`load_kinetics`). Diffusional reactions (pearlite, bainite) are isothermal JMAK laws
+The ``[austenitisation]``, ``[kinetics]`` and ``[hardness]`` tables of ``materials/NAME.toml`` (declared and checked
+in :mod:`quenchsim.inputs.steel`) become a :class:`Kinetics` here (:func:`load_kinetics`). Diffusional reactions (pearlite, bainite) are isothermal JMAK laws
 X = 1 - exp(-(t/tau(T))^n(T)) from one of three sources:
 
 * ``li1998``: the composition model of Li et al. (1998, Met. Trans. B 29B 661), t(X, T) = tau_1(T) S(X),
@@ -21,17 +20,20 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.steel import (CCurveReaction, HardnessTable, JmakPolynomialReaction, LiReaction,
+                                    ReactionTable)
+from quenchsim.inputs.steel import PhaseHardness as PhaseHardnessTable
+from quenchsim.inputs.steel import Reaction as ReactionSpec
+from quenchsim.inputs.steel import Steel
+from quenchsim.materials import as_steel
 from quenchsim.materials.properties import PHASES
 from quenchsim.metallurgy.laws import (c_curve_ln_inverse_tau, jmak_exponent, li_rate, li_sigmoid_integral,
                                        linear_formula)
-
-ELEMENTS = ("C", "Si", "Mn", "Ni", "Cr", "Mo", "V", "Cu", "Co", "Al", "W", "P", "S")
-"""Alloying elements a composition (wt %) may list."""
 
 DIFFUSIONAL = ("pearlite", "bainite")
 """Products of the diffusional (JMAK) reactions, in PHASES order."""
@@ -48,51 +50,6 @@ DEFAULT_SUBSTEP_K = 5.0
 Each sub-step integrates 1/tau(T(t)) with 2-point Gauss-Legendre quadrature (T linear in time), so
 the additivity error is O(substep^4) for a single reaction; 5 K keeps it far below 1e-4 in fraction
 for the steels here (see tests/test_metallurgy_kinetics.py and reports/cct.md)."""
-
-
-def _number(table: Mapping[str, Any], key: str, where: str, positive: bool = False) -> float:
-    if key not in table:
-        raise InputError(f"{where}.{key}", None, "is required")
-    value = table[key]
-    if isinstance(value, Mapping):
-        if "value" not in value:
-            raise InputError(f"{where}.{key}", dict(value), "needs a 'value' (and a 'source')")
-        value = value["value"]
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value):
-        raise InputError(f"{where}.{key}", value, "must be a finite number")
-    if positive and value <= 0:
-        raise InputError(f"{where}.{key}", value, "must be > 0")
-    return float(value)
-
-
-def _source(table: Mapping[str, Any], where: str) -> str:
-    src = table.get("source")
-    if not isinstance(src, str) or not src.strip():
-        raise InputError(f"{where}.source", src, "every data table needs a non-empty 'source'")
-    return src
-
-
-def _formula(table: Mapping[str, Any], key: str, where: str) -> dict[str, float]:
-    spec = table.get(key)
-    if not isinstance(spec, Mapping) or not spec:
-        raise InputError(f"{where}.{key}", spec, "must be a table {const = a0, C = a_C, Mn = a_Mn, sqrt_Mo = ...}")
-    out = {}
-    for name, value in spec.items():
-        base = name[5:] if name.startswith("sqrt_") else name
-        if name != "const" and base not in ELEMENTS:
-            raise InputError(f"{where}.{key}.{name}", value, f"term must be 'const', an element of {ELEMENTS} or sqrt_<element>")
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise InputError(f"{where}.{key}.{name}", value, "must be a number")
-        out[name] = float(value)
-    return out
-
-
-def _fraction_pair(table: Mapping[str, Any], where: str) -> tuple[float, float]:
-    Xs = _number(table, "X_start", where)
-    Xf = _number(table, "X_finish", where)
-    if not 0.0 < Xs < Xf < 1.0:
-        raise InputError(f"{where}.X_finish", Xf, f"need 0 < X_start ({Xs}) < X_finish < 1")
-    return Xs, Xf
 
 
 @dataclass(frozen=True)
@@ -169,242 +126,121 @@ class Kinetics:
     substep_K: float = DEFAULT_SUBSTEP_K
 
 
-def _composition(material: Mapping[str, Any], name: str) -> dict[str, float]:
-    comp = material.get("composition")
-    if not isinstance(comp, Mapping):
-        raise InputError(f"{name}.composition", comp, "the material needs a [composition] table (wt %)")
-    _source(comp, f"{name}.composition")
-    out = {}
-    for el, value in comp.items():
-        if el == "source":
-            continue
-        if el not in ELEMENTS:
-            raise InputError(f"{name}.composition.{el}", value, f"element must be one of {ELEMENTS}")
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0.0 <= value < 30.0:
-            raise InputError(f"{name}.composition.{el}", value, "must be a number in wt % (0 <= w < 30)")
-        out[el] = float(value)
-    if "C" not in out:
-        raise InputError(f"{name}.composition.C", None, "is required")
-    return out
-
-
-def _austenitisation_table(material: Mapping[str, Any], name: str) -> tuple[Mapping[str, Any], np.ndarray]:
-    where = f"{name}.austenitisation"
-    aus = material.get("austenitisation")
-    if not isinstance(aus, Mapping):
-        raise InputError(where, aus, "the material needs an [austenitisation] table")
-    _source(aus, where)
-    T = np.asarray(aus.get("T_aust_C", []), dtype=float)
-    if T.ndim != 1 or T.size < 1 or np.any(np.diff(T) <= 0):
-        raise InputError(f"{where}.T_aust_C", aus.get("T_aust_C"), "must be a non-empty list of strictly increasing temperatures")
-    return aus, T
-
-
-def check_austenitising_temperature(material: Mapping[str, Any], T_aust_C: float, field: str = "T_aust_C") -> None:
+def check_austenitising_temperature(material: Steel | Mapping[str, Any], T_aust_C: float, field: str = "T_aust_C"
+                                    ) -> None:
     """Raise :class:`InputError` (naming ``field``) unless ``T_aust_C`` lies within the range the steel's
     ``[austenitisation]`` table covers: its dissolved carbon, Ms and kinetics are known there only (a case checks this
     at load, before any file is written)."""
-    name = str(material.get("name", "material"))
-    _require_tabulated(_austenitisation_table(material, name)[1], T_aust_C, name, field)
+    as_steel(material).check_austenitising_temperature(T_aust_C, field)
 
 
-def _require_tabulated(T: np.ndarray, T_aust_C: float, name: str, field: str) -> None:
-    if not T[0] <= T_aust_C <= T[-1]:
-        raise InputError(field, T_aust_C, f"outside the austenitising range tabulated for {name}: {T[0]:g}-{T[-1]:g} C "
-                                          "(its [austenitisation] table)")
+def _upper_temperature(table: ReactionTable, composition: Mapping[str, float]) -> float:
+    if table.T_upper_formula is not None:
+        return linear_formula(table.T_upper_formula, composition)
+    return float(cast(float, table.T_upper_C))   # one of the two (ReactionTable.check)
 
 
-def _dissolved(material: Mapping[str, Any], name: str, bulk: Mapping[str, float], T_aust_C: float) -> tuple[dict[str, float], float]:
-    where = f"{name}.austenitisation"
-    aus, T = _austenitisation_table(material, name)
-    _require_tabulated(T, T_aust_C, name, "T_aust_C")
-    table = aus.get("dissolved_wt")
-    if not isinstance(table, Mapping) or "C" not in table:
-        raise InputError(f"{where}.dissolved_wt", table, "must be a table element -> list (at least C) along T_aust_C")
-    dissolved = dict(bulk)
-    for el, values in table.items():
-        v = np.asarray(values, dtype=float)
-        if el not in bulk:
-            raise InputError(f"{where}.dissolved_wt.{el}", values, "element is not in [composition]")
-        if v.shape != T.shape or np.any(v < 0) or np.any(v > bulk[el] + 1e-12):
-            raise InputError(f"{where}.dissolved_wt.{el}", values,
-                             f"must be {T.size} values between 0 and the bulk content {bulk[el]}")
-        dissolved[el] = float(np.interp(T_aust_C, T, v))
-    if "grain_size_ASTM" not in aus:
-        return dissolved, float("nan")
-    grain = _number(aus, "grain_size_ASTM", where)
-    if not 0.0 <= grain <= 15.0:
-        raise InputError(f"{where}.grain_size_ASTM", grain, "ASTM grain size number must be within 0-15")
-    return dissolved, grain
+def _n_exponent_end_check(n_ends: np.ndarray, key: str, value: Any, T_upper: float, where: str) -> None:
+    if not np.all(n_ends > 0.0):
+        raise InputError(f"{where}.{key}", value, f"n(T) must stay > 0 from 0 C to {T_upper:.0f} C")
 
 
-def _upper_temperature(table: Mapping[str, Any], where: str, composition: Mapping[str, float]) -> float:
-    if "T_upper_formula" in table:
-        return linear_formula(_formula(table, "T_upper_formula", where), composition)
-    return _number(table, "T_upper_C", where)
-
-
-def _reaction(table: Any, where: str, composition: Mapping[str, float], grain: float) -> Reaction:
-    if not isinstance(table, Mapping):
-        raise InputError(where, table, "must be a table with a 'model'")
-    source = _source(table, where)
-    model = table.get("model")
-    T_upper = _upper_temperature(table, where, composition)
-    if model == "li1998":
+def _reaction(table: ReactionSpec, where: str, composition: Mapping[str, float], grain: float) -> Reaction:
+    """The JMAK law of a declared reaction table, its temperature-dependent checks here (they need the composition
+    the formulas take)."""
+    T_upper = _upper_temperature(table, composition)
+    params: dict[str, Any]
+    if isinstance(table, LiReaction):
         if not np.isfinite(grain):
             raise InputError(where.rsplit(".kinetics", 1)[0] + ".austenitisation.grain_size_ASTM", None,
                              "is required by the li1998 kinetics model")
-        Xs, Xf = _fraction_pair(table, where)
-        c = _number(table, "sigmoid_exponent", where, positive=True)
+        Xs, Xf, c = table.X_start, table.X_finish, table.sigmoid_exponent
         S_s, S_f = li_sigmoid_integral(Xs, c), li_sigmoid_integral(Xf, c)
         n = jmak_exponent(Xs, Xf, S_f / S_s)
         params = {
-            "ln_F": linear_formula(_formula(table, "ln_F", where), composition),
-            "beta_grain": _number(table, "beta_grain", where),
+            "ln_F": linear_formula(table.ln_F, composition),
+            "beta_grain": table.beta_grain,
             "grain_ASTM": grain,
-            "n_undercooling": _number(table, "n_undercooling", where, positive=True),
-            "Q_cal_mol": _number(table, "Q_cal_mol", where, positive=True),
+            "n_undercooling": table.n_undercooling,
+            "Q_cal_mol": table.Q_cal_mol,
             "n": n,
             # tau_JMAK / tau_1: the JMAK law passes through Li's t(X_start) = tau_1 S(X_start)
             "tau_ratio": S_s / (-np.log1p(-Xs)) ** (1.0 / n),
         }
-    elif model == "jmak_polynomial":
-        params = {"ln_b": _poly(table, "ln_b_poly_T_C", where), "n": _poly(table, "n_poly_T_C", where),
-                  "time_unit_s": _number(table, "time_unit_s", where, positive=True)}
+    elif isinstance(table, JmakPolynomialReaction):
+        params = {"ln_b": np.asarray(table.ln_b_poly_T_C, float), "n": np.asarray(table.n_poly_T_C, float),
+                  "time_unit_s": table.time_unit_s}
         n_min = np.polynomial.polynomial.polyval(np.linspace(0.0, T_upper, 200), params["n"]).min()
         if not n_min > 0.0:
-            raise InputError(f"{where}.n_poly_T_C", table["n_poly_T_C"], f"n(T) must stay > 0 from 0 C to {T_upper:.0f} C")
-    elif model == "c_curve":
-        params = {"T_ref_C": _number(table, "T_ref_C", where)}
-        nodes = any(key in table for key in N_NODES)
-        for key in C_CURVE_PARAMETERS:
-            if nodes and key in ("n", "n_per_K"):
-                if key in table:
-                    raise InputError(f"{where}.{key}", table[key], "give n (and n_per_K) or n_nodes_T_C with n_nodes, not both")
-                continue
-            params[key] = 0.0 if key == "n_per_K" and key not in table else _number(table, key, where,
-                                                                                   positive=key != "n_per_K")
-        if not params["T_ref_C"] < T_upper:
-            raise InputError(f"{where}.T_ref_C", params["T_ref_C"], f"must lie below T_upper = {T_upper:g} C")
-        if nodes:
-            params.update(n_exponent_nodes(table.get("n_nodes_T_C"), table.get("n_nodes"), where))
+            raise InputError(f"{where}.n_poly_T_C", list(table.n_poly_T_C),
+                             f"n(T) must stay > 0 from 0 C to {T_upper:.0f} C")
+    elif isinstance(table, CCurveReaction):
+        params = {"T_ref_C": table.T_ref_C, "tau_ref_s": table.tau_ref_s,
+                  "undercooling_exponent": table.undercooling_exponent, "Q_J_mol": table.Q_J_mol}
+        if not table.T_ref_C < T_upper:
+            raise InputError(f"{where}.T_ref_C", table.T_ref_C, f"must lie below T_upper = {T_upper:g} C")
+        if table.n_nodes is not None and table.n_nodes_T_C is not None:
+            params.update(n_nodes_T_C=np.asarray(table.n_nodes_T_C, float), n_nodes=np.asarray(table.n_nodes, float))
         else:
+            params.update(n=cast(float, table.n), n_per_K=table.n_per_K or 0.0)   # n given (CCurveReaction.check)
             n_ends = params["n"] + params["n_per_K"] * (np.array([0.0, T_upper]) - params["T_ref_C"])
-            if not np.all(n_ends > 0.0):
-                raise InputError(f"{where}.n_per_K", params["n_per_K"], f"n(T) must stay > 0 from 0 C to {T_upper:.0f} C")
-    elif model == "ttt_table":
-        Xs, Xf = _fraction_pair(table, where)
-        T = np.asarray(table.get("T_C", []), dtype=float)
-        ts = np.asarray(table.get("t_start_s", []), dtype=float)
-        tf = np.asarray(table.get("t_finish_s", []), dtype=float)
-        if T.ndim != 1 or T.size < 2 or np.any(np.diff(T) <= 0):
-            raise InputError(f"{where}.T_C", table.get("T_C"), "must list at least 2 strictly increasing temperatures")
-        if ts.shape != T.shape or np.any(ts <= 0):
-            raise InputError(f"{where}.t_start_s", table.get("t_start_s"), f"must be {T.size} positive times")
-        if tf.shape != T.shape or np.any(tf <= ts):
-            raise InputError(f"{where}.t_finish_s", table.get("t_finish_s"), f"must be {T.size} times later than t_start_s")
+            _n_exponent_end_check(n_ends, "n_per_K", params["n_per_K"], T_upper, where)
+    else:
+        Xs, Xf = table.X_start, table.X_finish
+        T, ts, tf = (np.asarray(v, float) for v in (table.T_C, table.t_start_s, table.t_finish_s))
         n = np.log(np.log1p(-Xf) / np.log1p(-Xs)) / np.log(tf / ts)
         params = {"T_C": T, "n": n, "ln_tau": np.log(ts) - np.log(-np.log1p(-Xs)) / n}
-    else:
-        raise InputError(f"{where}.model", model, "must be one of li1998, jmak_polynomial, ttt_table, c_curve")
-    if model == "ttt_table":  # no reaction above the table either
-        T_upper = min(T_upper, float(params["T_C"][-1]))
-    return Reaction(model=model, source=source, T_upper_C=T_upper, params=params)
+        T_upper = min(T_upper, float(T[-1]))   # no reaction above the table either
+    return Reaction(model=table.model, source=table.source, T_upper_C=T_upper, params=params)
 
 
-def n_exponent_nodes(T_C: Any, n: Any, where: str) -> dict[str, np.ndarray]:
-    """Checked node temperatures and Avrami exponents of a piecewise-linear n(T) (values or {value, source} tables)."""
-    T_C, n = (v.get("value") if isinstance(v, Mapping) else v for v in (T_C, n))
-    try:
-        T = np.asarray(T_C, dtype=float)
-        values = np.asarray(n, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"{where}.n_nodes", n, "n_nodes_T_C and n_nodes must be lists of numbers") from None
-    if T.ndim != 1 or T.size < 2 or not np.all(np.isfinite(T)) or np.any(np.diff(T) <= 0):
-        raise InputError(f"{where}.n_nodes_T_C", T_C, "must list at least 2 strictly increasing temperatures")
-    if values.shape != T.shape or not np.all(np.isfinite(values)) or np.any(values <= 0):
-        raise InputError(f"{where}.n_nodes", n, f"must be {T.size} positive Avrami exponents (one per n_nodes_T_C)")
-    return {"n_nodes_T_C": T, "n_nodes": values}
-
-
-def _poly(table: Mapping[str, Any], key: str, where: str) -> np.ndarray:
-    c = np.asarray(table.get(key, []), dtype=float)
-    if c.ndim != 1 or c.size < 1 or not np.all(np.isfinite(c)):
-        raise InputError(f"{where}.{key}", table.get(key), "must be a list of polynomial coefficients a0, a1, ... in T (C)")
-    return c
-
-
-def _hardness(material: Mapping[str, Any], name: str, bulk: Mapping[str, float], dissolved: Mapping[str, float]) -> dict[str, PhaseHardness]:
-    where = f"{name}.hardness"
-    table = material.get("hardness")
-    if not isinstance(table, Mapping):
-        raise InputError(where, table, "the material needs a [hardness] table")
+def _hardness(table: HardnessTable, bulk: Mapping[str, float], dissolved: Mapping[str, float]
+              ) -> dict[str, PhaseHardness]:
     out = {}
     for phase in PHASES:
-        sub = table.get(phase)
-        w = f"{where}.{phase}"
-        if not isinstance(sub, Mapping):
-            raise InputError(w, sub, "needs a table: {HV = ...} or Maynier {composition, base, rate}")
-        source = _source(sub, w)
-        max_HV = _number(sub, "max_HV", w, positive=True) if "max_HV" in sub else np.inf
-        if "HV" in sub:
-            out[phase] = PhaseHardness({}, {"const": _number(sub, "HV", w, positive=True)}, {}, max_HV, source)
+        sub: PhaseHardnessTable = getattr(table, phase)
+        max_HV = sub.max_HV if sub.max_HV is not None else np.inf
+        if sub.HV is not None:
+            out[phase] = PhaseHardness({}, {"const": sub.HV}, {}, max_HV, sub.source)
             continue
-        which = sub.get("composition")
-        if which not in ("bulk", "dissolved"):
-            raise InputError(f"{w}.composition", which, "must be 'bulk' or 'dissolved'")
-        out[phase] = PhaseHardness(dict(bulk if which == "bulk" else dissolved), _formula(sub, "base", w),
-                                   _formula(sub, "rate", w), max_HV, source)
+        out[phase] = PhaseHardness(dict(bulk if sub.composition == "bulk" else dissolved), dict(sub.base or {}),
+                                   dict(sub.rate or {}), max_HV, sub.source)
     return out
 
 
-def load_kinetics(material: dict[str, Any], T_aust_C: float) -> Kinetics:
-    """Build the kinetics of ``material`` (a :func:`quenchsim.materials.load_material` table) austenitised at T_aust_C.
+def load_kinetics(material: Steel | Mapping[str, Any], T_aust_C: float) -> Kinetics:
+    """The kinetics of a steel (:func:`quenchsim.materials.load_steel`, or a table in its file's form) austenitised
+    at ``T_aust_C``: its ``[austenitisation]``, ``[kinetics]`` and ``[hardness]`` tables (declared in
+    :mod:`quenchsim.inputs.steel`, which says what each key takes) with the composition dissolved at ``T_aust_C``.
 
-    Schema (every table carries ``source``):
-
-    * ``[austenitisation]``: ``T_aust_C`` list, ``dissolved_wt = {C = [...], Cr = [...]}`` (wt % in
-      austenite along T_aust_C; unlisted elements stay at bulk), ``grain_size_ASTM`` (needed by li1998).
     * ``[kinetics] composition = "dissolved" | "bulk"``: which composition feeds the formulas.
-    * ``[kinetics.pearlite]``, ``[kinetics.bainite]`` (each optional): ``model`` =
-      ``li1998`` {ln_F, beta_grain, n_undercooling, Q_cal_mol, sigmoid_exponent, X_start, X_finish},
-      ``jmak_polynomial`` {ln_b_poly_T_C, n_poly_T_C, time_unit_s} or
-      ``ttt_table`` {T_C, t_start_s, t_finish_s, X_start, X_finish} or
-      ``c_curve`` {T_ref_C, tau_ref_s, undercooling_exponent, Q_J_mol, n, optional n_per_K -- or n_nodes_T_C and
-      n_nodes in place of n, n_per_K}; plus the upper temperature
-      ``T_upper_C`` (a number) or ``T_upper_formula`` (a linear composition formula).
+    * ``[kinetics.pearlite]``, ``[kinetics.bainite]`` (each optional): ``model`` = ``li1998``, ``jmak_polynomial``,
+      ``ttt_table`` or ``c_curve``, with the upper temperature ``T_upper_C`` or ``T_upper_formula``.
     * ``[kinetics.martensite]``: ``Ms_C`` or ``Ms_formula``, ``alpha_per_K`` (Koistinen-Marburger).
     * ``[hardness.<phase>]`` for every phase: ``HV`` or Maynier ``composition/base/rate``; optional ``max_HV``.
 
-    Errors name the offending field (``SUJ3.kinetics.martensite.alpha_per_K = ...: must be > 0``).
+    Errors name the offending key (``SUJ3.kinetics.martensite.Ms_C = ...``).
     """
-    name = str(material.get("name", "material"))
+    steel = as_steel(material)
+    name = steel.name
     if isinstance(T_aust_C, bool) or not isinstance(T_aust_C, (int, float)) or not np.isfinite(T_aust_C):
         raise InputError("T_aust_C", T_aust_C, "must be a finite temperature in C")
-    bulk = _composition(material, name)
-    dissolved, grain = _dissolved(material, name, bulk, float(T_aust_C))
-    kin = material.get("kinetics")
-    if not isinstance(kin, Mapping):
-        raise InputError(f"{name}.kinetics", kin, "the material needs a [kinetics] table")
-    _source(kin, f"{name}.kinetics")
-    which = kin.get("composition")
-    if which not in ("bulk", "dissolved"):
-        raise InputError(f"{name}.kinetics.composition", which, "must be 'bulk' or 'dissolved'")
-    comp = bulk if which == "bulk" else dissolved
-    for key in kin:
-        if key not in (*DIFFUSIONAL, "martensite", "composition", "source", "fit"):
-            raise InputError(f"{name}.kinetics.{key}", kin[key],
-                             f"unknown entry; allowed: {DIFFUSIONAL}, martensite, composition, source, fit (provenance)")
-    reactions = {p: _reaction(kin[p], f"{name}.kinetics.{p}", comp, grain) for p in DIFFUSIONAL if p in kin}
-    mart = kin.get("martensite")
-    where = f"{name}.kinetics.martensite"
-    if not isinstance(mart, Mapping):
-        raise InputError(where, mart, "needs a table with Ms_C or Ms_formula and alpha_per_K")
-    _source(mart, where)
-    Ms = linear_formula(_formula(mart, "Ms_formula", where), comp) if "Ms_formula" in mart else _number(mart, "Ms_C", where)
-    alpha = _number(mart, "alpha_per_K", where, positive=True)
+    steel.check_austenitising_temperature(float(T_aust_C))
+    composition, austenitisation, kin, hardness = steel.composition, steel.austenitisation, steel.kinetics, steel.hardness
+    if composition is None or austenitisation is None or kin is None or hardness is None:
+        steel.require_run_data(name)
+        raise InputError(f"{name}.transformations", steel.transformations, "a steel whose austenite does not "
+                         "transform has no kinetics")
+    bulk = composition.wt
+    dissolved = austenitisation.dissolved_at(float(T_aust_C), bulk)
+    grain = austenitisation.grain_size_ASTM if austenitisation.grain_size_ASTM is not None else float("nan")
+    comp = bulk if kin.composition == "bulk" else dissolved
+    reactions = {p: _reaction(table, f"{name}.kinetics.{p}", comp, grain) for p, table in kin.reactions().items()}
+    mart = kin.martensite
+    Ms = linear_formula(mart.Ms_formula, comp) if mart.Ms_formula is not None else float(cast(float, mart.Ms_C))
     if not -273.0 < Ms < T_aust_C:
-        raise InputError(f"{where}.Ms_C", round(Ms, 1), f"Ms must lie between -273 C and T_aust = {T_aust_C} C")
-    return Kinetics(material=name, T_aust_C=float(T_aust_C), composition=bulk, dissolved=dissolved, grain_size_ASTM=grain,
-                    reactions=reactions, Ms_C=float(Ms), alpha_per_K=alpha,
-                    hardness=_hardness(material, name, bulk, dissolved))
+        raise InputError(f"{name}.kinetics.martensite.Ms_C", round(Ms, 1),
+                         f"Ms must lie between -273 C and T_aust = {T_aust_C} C")
+    return Kinetics(material=name, T_aust_C=float(T_aust_C), composition=bulk, dissolved=dissolved,
+                    grain_size_ASTM=grain, reactions=reactions, Ms_C=float(Ms), alpha_per_K=mart.alpha_per_K,
+                    hardness=_hardness(hardness, bulk, dissolved))

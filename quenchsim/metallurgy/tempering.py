@@ -31,11 +31,14 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.steel import Steel
+from quenchsim.inputs.tempering import TemperHardness, TemperingData
+from quenchsim.materials import as_steel
 from quenchsim.materials.properties import PHASES
 from quenchsim.metallurgy.hardness import hrc_to_hv, phase_hardness_HV
 from quenchsim.metallurgy.kinetics import Kinetics, load_kinetics
@@ -130,71 +133,38 @@ def jmak_through(points: list[tuple[float, float, float]], C: float, where: str)
     return Process(P50_K=P[0] - y[0] * width, width_K=width)
 
 
-def _points(table: Mapping[str, Any], key: str, where: str) -> list[tuple[float, float, float]]:
-    raw = table.get("points")
-    if not isinstance(raw, list):
-        raise InputError(f"{where}.points", raw, "must be a list of {T_C, time_h, " + key + "} tables")
-    out = []
-    for i, p in enumerate(raw):
-        try:
-            T, t, x = float(p["T_C"]), float(p["time_h"]), float(p[key])
-        except (KeyError, TypeError, ValueError):
-            raise InputError(f"{where}.points[{i}]", p, f"needs numbers T_C, time_h and {key}") from None
-        if not (t > 0.0 and 0.0 < x < 1.0):
-            raise InputError(f"{where}.points[{i}]", p, f"needs time_h > 0 and 0 < {key} < 1")
-        out.append((T, t, x))
-    return out
+def has_tempering(material: Steel | Mapping[str, Any]) -> bool:
+    """Whether the steel has tempering data (the file its ``tempering`` key names, found)."""
+    return isinstance(as_steel(material).tempering, TemperingData)
 
 
-def _value(spec: Any, where: str) -> float:
-    value = spec.get("value") if isinstance(spec, Mapping) else spec
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise InputError(where, value, "must be a finite number")
-    return float(value)
-
-
-def has_tempering(material: Mapping[str, Any]) -> bool:
-    return isinstance(material.get("tempering"), Mapping)
-
-
-def load_tempering(material: Mapping[str, Any], kin: Kinetics) -> Tempering:
-    """The tempering data of ``material`` (its ``tempering`` table, :func:`quenchsim.materials.load_material`) for
-    the steel hardened as ``kin`` says (its dissolved carbon sets the clock constant)."""
-    name = str(material.get("name", "material"))
-    data = material.get("tempering")
-    if not isinstance(data, Mapping):
+def load_tempering(material: Steel | Mapping[str, Any], kin: Kinetics) -> Tempering:
+    """The tempering data of ``material`` (its ``tempering`` file, :class:`quenchsim.inputs.tempering.TemperingData`,
+    resolved by :func:`quenchsim.materials.load_steel`) for the steel hardened as ``kin`` says (its dissolved carbon
+    sets the clock constant)."""
+    steel = as_steel(material)
+    name = steel.name
+    data = steel.tempering
+    if not isinstance(data, TemperingData):
         raise InputError("temper", name, "the steel has no tempering data (a `tempering` file named in its material "
                          "file, e.g. data/tempering_1C_Cr.toml); a [temper] stage needs it")
     where = f"{name}.tempering"
-    clock = data.get("clock", {})
-    if clock.get("law") != "hollomon_jaffe" or not isinstance(clock.get("constant_formula"), Mapping):
-        raise InputError(f"{where}.clock", clock, "needs law = 'hollomon_jaffe' and a constant_formula")
-    composition = kin.dissolved if clock.get("carbon", "dissolved") == "dissolved" else kin.composition
-    formula = {k: float(v) for k, v in clock["constant_formula"].items() if k != "source"}
-    C = linear_formula(formula, composition)
+    composition = kin.dissolved if data.clock.carbon == "dissolved" else kin.composition
+    C = linear_formula(data.clock.formula, composition)
     if not 5.0 < C < 40.0:
         raise InputError(f"{where}.clock.constant_formula", round(C, 2), "gives a Hollomon-Jaffe constant outside 5-40")
     reactions = {}
-    for rname, table in data.get("reactions", {}).items():
+    for rname, table in data.reactions.items():
         w = f"{where}.reactions.{rname}"
-        parent = table.get("parent")
-        if parent not in PHASES:
-            raise InputError(f"{w}.parent", parent, f"must be one of {PHASES}")
-        process = jmak_through(_points(table, "progress", w), C, w)
-        product = table.get("product")
-        if parent == "austenite":
-            if product not in PHASES[1:]:
-                raise InputError(f"{w}.product", product, f"the austenite's product must be one of {PHASES[1:]}")
-            strain = 0.0   # the stress model's own austenite -> product volume change
-        else:
-            strain = _value(table.get("volume_change_pct_per_C"), f"{w}.volume_change_pct_per_C") \
-                * kin.dissolved["C"] / 300.0
-        reactions[rname] = Reaction(rname, parent, process, strain, product, str(table.get("points_source", "")))
-    relax = data.get("relaxation", {})
-    pts = [(T, t, 1.0 - r) for T, t, r in _points(relax, "stress_ratio", f"{where}.relaxation")]
+        process = jmak_through([(p.T_C, p.time_h, p.progress) for p in table.points], C, w)
+        # the austenite's decomposition: the stress model's own austenite -> product volume change
+        strain = 0.0 if table.parent == "austenite" else float(cast(float, table.volume_change_pct_per_C)) \
+            * kin.dissolved["C"] / 300.0
+        reactions[rname] = Reaction(rname, table.parent, process, strain, table.product, table.points_source)
+    pts = [(p.T_C, p.time_h, 1.0 - p.stress_ratio) for p in data.relaxation.points]
     relaxation = jmak_through(pts, C, f"{where}.relaxation")
-    base = Tempering(name, C, reactions, relaxation, (0.0,), str(data.get("source", "")))
-    poly = fit_tempered_martensite(base, material, data.get("hardness", {}), f"{where}.hardness")
+    base = Tempering(name, C, reactions, relaxation, (0.0,), data.source)
+    poly = fit_tempered_martensite(base, steel, data.hardness, f"{where}.hardness")
     return Tempering(name, C, reactions, relaxation, poly, base.source)
 
 
@@ -230,26 +200,21 @@ HARDNESS_LAWS = {"linear_in_P": 1, "quadratic_in_P": 2}
 """The polynomial degree in P of each form of HV_TM(P)."""
 
 
-def fit_tempered_martensite(tempering: Tempering, material: Mapping[str, Any], table: Mapping[str, Any],
+def fit_tempered_martensite(tempering: Tempering, material: Steel | Mapping[str, Any], table: TemperHardness,
                             where: str) -> tuple[float, ...]:
-    """The coefficients of HV_TM(P), a polynomial in P/1000 of the table's ``law``: least squares to the table's HRC after tempering at ``T_C`` for ``time_h`` of a
-    specimen hardened from ``austenitising_temperature_C`` and quenched to ``room_temperature_C``, its retained
-    austenite and that austenite's decomposition taken into account (:func:`specimen_hardness_HV`)."""
-    degree = HARDNESS_LAWS.get(table.get("law"))   # type: ignore[arg-type]
-    if degree is None:
-        raise InputError(f"{where}.law", table.get("law"), f"must be one of {', '.join(HARDNESS_LAWS)}")
-    T = np.asarray(table.get("T_C", []), dtype=float)
-    hrc = np.asarray(table.get("HRC", []), dtype=float)
-    if T.ndim != 1 or T.size < 2 or hrc.shape != T.shape:
-        raise InputError(f"{where}.HRC", table.get("HRC"), "needs at least two HRC values, one per T_C")
-    kin = load_kinetics(dict(material), _value(table.get("austenitising_temperature_C"),
-                                               f"{where}.austenitising_temperature_C"))
-    room = _value(table.get("room_temperature_C", 25.0), f"{where}.room_temperature_C")
-    P = (T + KELVIN) * (tempering.clock_constant + math.log10(_value(table.get("time_h"), f"{where}.time_h")))
+    """The coefficients of HV_TM(P), a polynomial in P/1000 of the table's ``law``: least squares to the table's HRC
+    after tempering at ``T_C`` for ``time_h`` of a specimen hardened from ``austenitising_temperature_C`` and quenched
+    to ``room_temperature_C``, its retained austenite and that austenite's decomposition taken into account
+    (:func:`specimen_hardness_HV`)."""
+    degree = HARDNESS_LAWS[table.law]
+    T, hrc = np.asarray(table.T_C, dtype=float), np.asarray(table.HRC, dtype=float)
+    kin = load_kinetics(material, table.austenitising_temperature_C)
+    room = table.room_temperature_C
+    P = (T + KELVIN) * (tempering.clock_constant + math.log10(table.time_h))
     x_m = 1.0 - specimen_austenite(kin, room)
     hv_m = (hrc_to_hv(hrc) - specimen_hardness_HV(tempering, kin, room, P, 0.0)) / x_m
     if T.size <= degree:
-        raise InputError(f"{where}.T_C", table.get("T_C"), f"needs more than {degree} points for the {table['law']} law")
+        raise InputError(f"{where}.T_C", list(table.T_C), f"needs more than {degree} points for the {table.law} law")
     return tuple(float(c) for c in np.polynomial.polynomial.polyfit(P / 1000.0, hv_m, degree))
 
 

@@ -62,7 +62,7 @@ PRICE_OUTLIER_FACTOR = 3.0
 """A step dearer than this many times the median step is a one-off, not priced (:meth:`TimeLeft._price`): where the
 vapour film first collapses, tries are thrown away (the thermal iteration at its limit) and the steps cost 3-14x the
 median on ring B condition 6, 7-25x on the solid cylinder. A step that refactorises the stress tangent stays in
-(41 ms on ring A's default mesh, reports/bench.md, about 2x a stress step's 20-27 ms)."""
+(41 ms on ring A's default mesh, docs/experiments/bench.md, about 2x a stress step's 20-27 ms)."""
 
 
 @dataclass(frozen=True)

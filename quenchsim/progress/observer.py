@@ -11,7 +11,9 @@ from typing import Any
 import numpy as np
 
 from quenchsim import metallurgy
+from quenchsim.metallurgy import Kinetics
 from quenchsim.progress import CoolingProgress, RunProgress, StepState, film_collapse_temperatures
+from quenchsim.run_state import RunState
 from quenchsim.progress.forecasts import diffusional_fraction_to_come, martensite_limit_steps_to_come
 
 
@@ -20,7 +22,7 @@ class QuenchObserver:
     committed step (an update of the estimate when the bar is due, :meth:`RunProgress.due`; otherwise a record of the
     step's clock and of the vapour film, :meth:`RunProgress.record_step`, :meth:`CoolingProgress.record_film`)."""
 
-    def __init__(self, run: Any, bar: RunProgress) -> None:
+    def __init__(self, run: RunState, bar: RunProgress) -> None:
         case, ctl = run.case, run.case.time
         self.run, self.bar = run, bar
         self.estimate = CoolingProgress(run.T_aust, case.air.until_max_C, case.air.temperature_C, ctl.dt_max_s,
@@ -49,44 +51,45 @@ class QuenchObserver:
         film_excess_K = float(np.max(T_surface_C - collapse_C))
         wetted = float(np.mean(T_surface_C[filmed] < collapse_C[filmed])) if filmed.any() else 0.0
         if not self.bar.due():
-            self.bar.record_step(counts["steps"], counts.get("stress_steps", 0), stress_s, solve_s)
-            self.estimate.record_film(thermal.time_s, counts["steps"], film_excess_K, wetted)
+            self.bar.record_step(counts.steps, counts.stress_steps, stress_s, solve_s)
+            self.estimate.record_film(thermal.time_s, counts.steps, film_excess_K, wetted)
             return
         fractions = thermal.fractions() if kin is not None else {}
-        now = StepState(counts["steps"], thermal.time_s, thermal.T, run.position["dt_s"],
+        now = StepState(counts.steps, thermal.time_s, thermal.T, run.position.dt_s,
                         self.t_end - thermal.time_s, math.isfinite(self.stage_now.until_max_C), self.later,
                         float(np.mean(T_surface_C)), film_excess_K, wetted,
                         float(np.mean(fractions.get("austenite", 0.0))),
                         self.limited_by_phase_change,
                         0.0 if kin is None else metallurgy.incubation_share(thermal.phase_state, kin, thermal.T_qp),
                         float(np.mean(sum(fractions.get(r, 0.0) for r in kin.reactions))) if kin is not None else 0.0,
-                        None if kin is None else self._diffusional_to_come(T_qp_before, dt_s),
+                        None if kin is None else self._diffusional_to_come(kin, T_qp_before, dt_s),
                         stage_ambient_C=self.bath_C,
                         martensite_fraction=float(np.mean(fractions.get("martensite", 0.0))),
                         martensite_limit_steps=None if kin is None else self._martensite_limit_steps(
-                            T_qp_before, dt_s, self.bath_C),
-                        stress_steps_done=counts.get("stress_steps", 0), clock_s=self.bar.clock())
+                            kin, T_qp_before, dt_s, self.bath_C),
+                        stress_steps_done=counts.stress_steps, clock_s=self.bar.clock())
         self.limited_by_phase_change = False
         steps_left = self.estimate.steps_left(now)
-        self.bar.update(thermal.time_s, self.estimate.fraction(thermal.T), counts["steps"], steps_left,
-                        counts.get("stress_steps", 0), self.estimate.stress_steps_left(now, steps_left),
+        self.bar.update(thermal.time_s, self.estimate.fraction(thermal.T), counts.steps, steps_left,
+                        counts.stress_steps, self.estimate.stress_steps_left(now, steps_left),
                         stress_s, solve_s)
 
-    def _diffusional_to_come(self, T_qp_before: np.ndarray, dt_s: float) -> Callable[[], float]:
+    def _diffusional_to_come(self, kin: Kinetics, T_qp_before: np.ndarray, dt_s: float) -> Callable[[], float]:
         """The forecast of the pearlite + bainite still to form, from each point's cooling rate over the step just
         taken (asked only when the estimate needs it)."""
         run = self.run
         state, T_qp = run.thermal.phase_state, run.thermal.T_qp
-        return lambda: diffusional_fraction_to_come(state, run.kin, T_qp, (T_qp_before - T_qp) / dt_s,
+        return lambda: diffusional_fraction_to_come(state, kin, T_qp, (T_qp_before - T_qp) / dt_s,
                                                     run.case.air.temperature_C)
 
-    def _martensite_limit_steps(self, T_qp_before: np.ndarray, dt_s: float, bath_C: float) -> Callable[[], float]:
+    def _martensite_limit_steps(self, kin: Kinetics, T_qp_before: np.ndarray, dt_s: float, bath_C: float
+                                ) -> Callable[[], float]:
         """The forecast of the stress steps the martensite still needs (``time.mechanics_max_dX`` on it), from the
         section's cooling rate over the step just taken towards the stage's ambient ``bath_C``, then the air's
         (asked only when needed)."""
         run = self.run
         state, T_qp = run.thermal.phase_state, run.thermal.T_qp
-        return lambda: martensite_limit_steps_to_come(state, run.kin, T_qp, (T_qp_before - T_qp) / dt_s,
+        return lambda: martensite_limit_steps_to_come(state, kin, T_qp, (T_qp_before - T_qp) / dt_s,
                                                       bath_C, run.case.air.temperature_C,
                                                       run.case.time.mechanics_max_dX)
 

@@ -15,11 +15,12 @@ from quenchsim.results import files
 from quenchsim.results.measured import compare_with_measured
 from quenchsim.results.postprocess import phase_statistics
 from quenchsim.results.shape import shape_change
+from quenchsim.run_state import RunState
 from quenchsim.results.summary import (FinalSection, hardness_summary, probe_state, probe_times,
                                        residual_stress_summary, residual_traverse)
 
 
-def nodal_fields(run: Any) -> dict[str, np.ndarray]:
+def nodal_fields(run: RunState) -> dict[str, np.ndarray]:
     """The nodal fields of ``run``'s present state (a VTK frame): temperature, the phases and hardness of a steel
     that transforms, the stress solver's fields when the stress is solved."""
     nv = run.section.mesh.p.shape[1]
@@ -29,6 +30,7 @@ def nodal_fields(run: Any) -> dict[str, np.ndarray]:
         for phase, X in run.thermal.fractions().items():
             data[phase] = run.projection(X)
         if isinstance(state, metallurgy.TemperState):   # during and after a temper: its clock and tempered hardness
+            assert run.tempering is not None   # a temper state comes with the tempering data (QuenchModel)
             data["tempering_parameter_K"] = run.projection(state.P)
             hv = metallurgy.tempering.tempered_hardness_HV(run.tempering, run.kin, state)
         else:
@@ -40,7 +42,7 @@ def nodal_fields(run: Any) -> dict[str, np.ndarray]:
     return data
 
 
-def final_frame(run: Any) -> Any:
+def final_frame(run: RunState) -> Any:
     """The last VTK frame: on the "before" (room-temperature, pre-quench) section, with ``displacement_m``
     carrying it to the final part (warp by 1 shows the part, by 10 its distortion x10) and
     ``displacement_from_start_m``, the solver's displacement from the austenitised start section with its
@@ -59,7 +61,7 @@ def handling_summary(case: Any) -> dict[str, Any]:
     liquid-property file, bath temperature, agitation and the part's support."""
     out: dict[str, Any] = {"transfer_time_s": case.transfer.time_s, "htc_model": case.quench.htc_model,
                            "immersion_speed_mm_s": case.quench.immersion_speed_mm_s}
-    bath = case.quench.bath
+    bath = case.bath
     if bath is not None:
         out.update(quenchant=case.get("quench.bath.quenchant"), liquid_properties=bath.liquid.name,
                    oil_temperature_C=bath.oil_temperature_C, agitation=bath.agitation,
@@ -68,25 +70,27 @@ def handling_summary(case: Any) -> dict[str, Any]:
     return out
 
 
-def mechanics_summary(run: Any, final: FinalSection, prefix: str = "") -> dict[str, Any]:
+def mechanics_summary(run: RunState, final: FinalSection, prefix: str = "") -> dict[str, Any]:
     """Dimensions before/after and their distortion budget, residual stresses at mid-width, traverse and
     outline files (named with ``prefix``) (``run``: a :class:`quenchsim.pipeline.QuenchRun` with the stress
     solved, at the state summarised)."""
+    mech, model = run.mech, run.mech_model
+    assert mech is not None and model is not None   # called with the stress solved (state_summary)
     before = mechanics.ring_dimensions(run.before_mesh)
-    after = mechanics.ring_dimensions(run.section.mesh, run.mech.displacement_m)
-    r_mm, hoop, axial = residual_traverse(final, run.mech.nodal_fields())
+    after = mechanics.ring_dimensions(run.section.mesh, mech.displacement_m)
+    r_mm, hoop, axial = residual_traverse(final, mech.nodal_fields())
     run.writer.residual_traverse(r_mm, hoop, axial, prefix)
     before_outline_mm = mechanics.section_outline(run.before_mesh) / MM
     run.writer.outline(before_outline_mm, final.outline_m / MM, prefix)
-    budget = mechanics.distortion_budget(run.mech, run.before_mesh, run.thermal.T_qp, run.thermal.fractions(),
-                                         run.mech_model.annealed_free_strain)
+    budget = mechanics.distortion_budget(mech, run.before_mesh, run.thermal.T_qp, run.thermal.fractions(),
+                                         model.annealed_free_strain)
     return {"dimensions_mm": mechanics.dimension_change(before, after),
             "shape_mm": shape_change(before_outline_mm, final.outline_m / MM),
             "distortion_budget_mm": budget,
             "residual_stress_MPa": residual_stress_summary(hoop, axial)}
 
 
-def state_summary(run: Any, prefix: str = "") -> dict[str, Any]:
+def state_summary(run: RunState, prefix: str = "") -> dict[str, Any]:
     """The hardness and phases (a transforming steel), the dimensions, shape, budget and residual stresses (stress
     solved) of ``run``'s present state, writing its traverse and outline files named with ``prefix``."""
     fields = nodal_fields(run)
@@ -107,18 +111,19 @@ def state_summary(run: Any, prefix: str = "") -> dict[str, Any]:
     return out
 
 
-def tempered_summary(run: Any, as_quenched: dict[str, Any]) -> dict[str, Any]:
+def tempered_summary(run: RunState, as_quenched: dict[str, Any]) -> dict[str, Any]:
     """The ``tempered`` block of a run with a ``[temper]``: the temper, the state after it (the keys of the
     as-quenched state, :func:`state_summary`, files prefixed ``tempered_``), the change of each dimension and shape
     measure by the temper and the tempering part of the distortion budget (each part after minus as quenched; the
     relaxation strain a part of its own)."""
-    temper = run.case.temper
+    temper, tempering = run.case.temper, run.tempering
+    assert temper is not None and tempering is not None   # a tempered summary follows a temper (run_summary)
     state = state_summary(run, files.TEMPERED_PREFIX)
     if "probe_state" in state:   # the tempered phases and HRC at each probe
         state["probes"] = state.pop("probe_state")
     out: dict[str, Any] = {"temper": {"temperature_C": temper.temperature_C, "time_s": temper.time_s,
                                       "htc_model": temper.htc_model,
-                                      "hollomon_jaffe_constant": run.tempering.clock_constant},
+                                      "hollomon_jaffe_constant": tempering.clock_constant},
                            **state}
     P = run.thermal.phase_state.P
     out["tempering_parameter_K"] = {"min": float(P.min()), "max": float(P.max()),
@@ -133,7 +138,7 @@ def tempered_summary(run: Any, as_quenched: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def run_summary(run: Any, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wall0: float) -> dict[str, Any]:
+def run_summary(run: RunState, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wall0: float) -> dict[str, Any]:
     """The summary of the finished ``run`` (:class:`quenchsim.pipeline.QuenchRun`): probes, handling, hardness and
     phases (a transforming steel), dimensions, shape, budget and stresses (stress solved), energy and solver
     counts; writes the hardness, residual-stress and outline files on the way."""
@@ -142,7 +147,7 @@ def run_summary(run: Any, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wa
                            "quenchsim_version": __version__, "case_sha256": case.digest()}
     out["probes"] = probe_times(time_s, probe_T)
     out["quench"] = handling_summary(case)
-    as_quenched = getattr(run, "as_quenched", None)
+    as_quenched = run.as_quenched
     state = dict(state_summary(run) if as_quenched is None else as_quenched)
     for name, entry in state.pop("probe_state", {}).items():   # the as-quenched phases and HRC at each probe
         out["probes"][name].update(entry)
@@ -154,15 +159,15 @@ def run_summary(run: Any, time_s: np.ndarray, probe_T: dict[str, np.ndarray], wa
         if measured is not None:
             out["measured"] = measured
     counts = run.counts
-    out["energy"] = {"heat_extracted_J": counts["heat_out_J"], "latent_released_J": counts["latent_J"]}
+    out["energy"] = {"heat_extracted_J": counts.heat_out_J, "latent_released_J": counts.latent_J}
     out["solver"] = {"wall_time_s": time.perf_counter() - wall0, "stage_time_s": dict(run.timings),
-                     "steps": counts["steps"], "rejected_steps": counts["rejected"],
-                     "stress_steps": counts.get("stress_steps", 0), "dofs": int(run.fe.n_dofs),
+                     "steps": counts.steps, "rejected_steps": counts.rejected,
+                     "stress_steps": counts.stress_steps, "dofs": int(run.fe.n_dofs),
                      "elements": int(run.section.n_elements), "end_time_s": float(run.thermal.time_s)}
     return out
 
 
-def summary_or_why_not(run: Any, time_s: np.ndarray, probe_T: dict[str, np.ndarray]) -> dict[str, Any]:
+def summary_or_why_not(run: RunState, time_s: np.ndarray, probe_T: dict[str, np.ndarray]) -> dict[str, Any]:
     """``run.summary(...)``; when post-processing is interrupted or fails, a summary.json that says so (and the
     interruption or error raised on)."""
     case = run.case

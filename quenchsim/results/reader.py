@@ -7,7 +7,6 @@ stopped early, or an older run without the mechanics files, gives ``None`` for w
 from __future__ import annotations
 
 import json
-import tomllib
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -16,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.reader import read_toml
 from quenchsim.results import files
 
 
@@ -103,9 +103,9 @@ def load(run_dir: str | Path) -> RunResults:
     case = summary = None
     if (path / files.CASE_TOML).is_file():
         try:
-            case = tomllib.loads((path / files.CASE_TOML).read_text())
-        except tomllib.TOMLDecodeError as exc:
-            notes.append(f"{files.CASE_TOML} is not valid TOML ({exc})")
+            case = read_toml(path / files.CASE_TOML, files.CASE_TOML)
+        except InputError as exc:
+            notes.append(f"{files.CASE_TOML} {exc.allowed}")
     if (path / files.SUMMARY_JSON).is_file():
         try:
             summary = json.loads((path / files.SUMMARY_JSON).read_text())

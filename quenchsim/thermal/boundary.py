@@ -13,31 +13,22 @@ Linear interpolation, constant beyond the ends.
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Mapping
+from typing import Any, cast
 
 import numpy as np
 
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.htc import HtcTable
+from quenchsim.inputs.declare import from_table
 
 
-def _table(spec: dict[str, Any], field: str) -> tuple[str, np.ndarray, np.ndarray, float]:
-    require(isinstance(spec, dict), field, spec, "must be a table with T_C (or time_s), h_W_m2K, ambient_C")
-    if "T_C" in spec:
-        axis_key, kind = "T_C", "temperature"
-    elif "time_s" in spec:
-        axis_key, kind = "time_s", "time"
-    else:
-        raise InputError(field, sorted(spec), "needs T_C or time_s with h_W_m2K")
-    x = np.asarray(spec[axis_key], dtype=float)
-    h = np.asarray(spec.get("h_W_m2K", []), dtype=float)
-    require(x.ndim == 1 and x.size >= 1, f"{field}.{axis_key}", spec[axis_key], "must be a non-empty list")
-    require(h.shape == x.shape, f"{field}.h_W_m2K", spec.get("h_W_m2K"), f"must be a list as long as {axis_key}")
-    require(bool(np.all(np.diff(x) > 0)), f"{field}.{axis_key}", spec[axis_key], "must be strictly increasing")
-    require(bool(np.all(h >= 0)), f"{field}.h_W_m2K", spec["h_W_m2K"], "values must be >= 0")
-    ambient: Any = spec.get("ambient_C")   # checked by require: a number
-    require(isinstance(ambient, (int, float)) and not isinstance(ambient, bool), f"{field}.ambient_C", ambient,
-            "must be a number (degrees C)")
-    return kind, x, h, float(ambient)
+def _table(table: HtcTable, ambient_C: float | None, field: str) -> tuple[str, np.ndarray, np.ndarray, float]:
+    """One table's kind, axis, values and ambient (its own, else the enclosing table's ``ambient_C``)."""
+    ambient = table.ambient_C if table.ambient_C is not None else ambient_C
+    require(ambient is not None, f"{field}.ambient_C", None, "must be a number (degrees C)")
+    kind = "temperature" if table.T_C is not None else "time"
+    return kind, np.asarray(table.axis, dtype=float), np.asarray(table.h_W_m2K, dtype=float), float(cast(float, ambient))
 
 
 class TableHTC:
@@ -61,19 +52,18 @@ class TableHTC:
         return h
 
 
-def parse_htc_table(spec: dict[str, Any], segment_of_point: np.ndarray, field: str = "quench.htc_table") -> TableHTC:
-    """Build a :class:`TableHTC` for points labelled by segment name; per-segment tables override the default."""
-    require(isinstance(spec, dict), field, spec, "must be a table")
-    segments = spec.get("segments", {})
-    require(isinstance(segments, dict), f"{field}.segments", segments, "must be a table of segment tables")
-    base = {k: v for k, v in spec.items() if k != "segments"}
+def parse_htc_table(spec: Mapping[str, Any] | HtcTable, segment_of_point: np.ndarray,
+                    field: str = "quench.htc_table") -> TableHTC:
+    """Build a :class:`TableHTC` for points labelled by segment name from an HTC table (its declaration,
+    :class:`quenchsim.inputs.case.HtcTable`, or a table as read); per-segment tables override the default."""
+    table = spec if isinstance(spec, HtcTable) else from_table(HtcTable, spec, field)
     tables = []
-    has_default = any(k in base for k in ("T_C", "time_s"))
+    has_default = bool(table.axis)
     if has_default:
-        tables.append(("", _table(base, field)))
-    for name, sub in segments.items():
-        merged = {**{k: v for k, v in base.items() if k == "ambient_C"}, **sub}
-        tables.append((name, _table(merged, f"{field}.segments.{name}")))
+        tables.append(("", _table(table, None, field)))
+    for name, sub in table.segments.items():
+        require(bool(sub.axis), f"{field}.segments.{name}", sorted(sub._given), "needs T_C or time_s with h_W_m2K")
+        tables.append((name, _table(sub, table.ambient_C, f"{field}.segments.{name}")))
     which = np.full(segment_of_point.shape, -1, dtype=int)
     if has_default:
         which[:] = 0
@@ -82,9 +72,10 @@ def parse_htc_table(spec: dict[str, Any], segment_of_point: np.ndarray, field: s
             which[segment_of_point == name] = i
     missing = sorted(set(segment_of_point[which < 0]))
     if missing:
-        raise InputError(f"{field}.segments", sorted(segments), f"no table for segments {missing} (and no default T_C/time_s)")
+        raise InputError(f"{field}.segments", sorted(table.segments), f"no table for segments {missing} (and no default "
+                         "T_C/time_s)")
     known = set(segment_of_point)
-    for name in segments:
+    for name in table.segments:
         require(name in known, f"{field}.segments.{name}", name, f"unknown segment; the section has {sorted(known)}")
     return TableHTC([t[1][0] for t in tables], [t[1][1] for t in tables], [t[1][2] for t in tables],
                     [t[1][3] for t in tables], which)

@@ -46,9 +46,9 @@ def _edited(tmp_path, old, new, source=CASE):
 
 @pytest.mark.parametrize("old,new,field", [
     (r"^roller_diameter_mm = 2.999", "roller_diameter_mm = 11.0", "bearing.roller_diameter_mm"),
-    (r"^guide_mm = 0.20", "guide_mm = -0.20", "clearance_set[2].guide_mm"),
-    (r"^pocket_mm = 0.10", "pocket_mm = -0.05", "clearance_set[1].pocket_mm"),
-    (r"^radial_mm = 0.030", "radial_mm = -0.5", "clearance_set[3].radial_mm"),
+    (r"^guide_mm = 0.20", "guide_mm = -0.20", "clearance_set[1].guide_mm"),     # arrays count from 0, as every
+    (r"^pocket_mm = 0.10", "pocket_mm = -0.05", "clearance_set[0].pocket_mm"),  # input file's
+    (r"^radial_mm = 0.030", "radial_mm = -0.5", "clearance_set[2].radial_mm"),
     (r"^n_rollers = 11", "n_rollers = 0", "bearing.n_rollers"),
     (r"^n_rollers = 11", "n_rollers = 40", "bearing.n_rollers"),
     (r'^oil = "engine_oil_sae30"', 'oil = "castor_bean"', "lubrication.oil"),
@@ -58,7 +58,7 @@ def test_bad_inputs_give_one_line_errors(tmp_path, capsys, old, new, field):
     path = _edited(tmp_path, old, new)
     with pytest.raises(InputError) as err:
         load_case(path)
-    assert str(err.value).startswith(field)
+    assert err.value.field == field and str(err.value).startswith(f"{path}: {field}")   # the file, then the key
     assert main(["bearings", "big-end", str(path), "--json"]) == 2
     captured = capsys.readouterr()
     assert captured.err.count("\n") == 1 and field in captured.err

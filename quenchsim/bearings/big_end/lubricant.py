@@ -7,11 +7,11 @@ nu in mm^2/s, T in K, fitted through the two tabulated points of the data file.
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
 from quenchsim.errors import InputError, require
+from quenchsim.inputs.reader import read_toml
 
 LUBRICANTS_DIR = Path(__file__).resolve().parents[3] / "materials" / "lubricants"
 KELVIN = 273.15
@@ -63,7 +63,7 @@ def load_oil(name: str, temperature_C: float) -> OilState:
         raise InputError("lubrication.oil", name, f"must be one of {known}")
     require(-30.0 <= temperature_C <= 150.0, "lubrication.temperature_C", temperature_C,
             "must be within -30..150 C (range of the Walther fit of the data file)")
-    data = tomllib.loads((LUBRICANTS_DIR / f"{name}.toml").read_text())
+    data = read_toml(LUBRICANTS_DIR / f"{name}.toml", "lubrication.oil")
     nu, beta = walther_viscosity(temperature_C, data["kinematic_viscosity_40C_mm2_s"], 40.0,
                                  data["kinematic_viscosity_100C_mm2_s"], 100.0)
     rho = data["density_15C_kg_m3"] * (1.0 - data["density_temperature_coefficient_1_K"]

@@ -13,13 +13,12 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
-import tomllib
 from dataclasses import dataclass
-from importlib import resources
 from typing import Any
 
 from quenchsim.bearings.kinematics import steel_properties
 from quenchsim.errors import require
+from quenchsim.inputs.reader import read_package_toml
 
 
 @dataclass(frozen=True)
@@ -94,7 +93,7 @@ class Clearances:
 @functools.cache
 def reference_data() -> dict[str, Any]:
     """data/doj.toml: the paper's conditions and Table 1 (printed) and the assumed geometry."""
-    return tomllib.loads(resources.files("quenchsim.bearings").joinpath("data/doj.toml").read_text("utf-8"))
+    return read_package_toml("quenchsim.bearings", "data/doj.toml")
 
 
 def reference_geometry() -> DOJGeometry:

@@ -23,15 +23,14 @@ from __future__ import annotations
 
 import functools
 import math
-import tomllib
 from dataclasses import dataclass
-from importlib import resources
 from typing import Any
 
 import numpy as np
 from scipy.optimize import brentq
 
 from quenchsim.errors import require
+from quenchsim.inputs.reader import read_package_toml
 
 MAGNET_DATA = "data/encoder_magnet.toml"
 """Plastic-bonded ferrite: remanence, coercivity and the temperature coefficient of remanence, with sources."""
@@ -141,7 +140,7 @@ def working_gap_m(encoder: Encoder, switching_field_T: float) -> float:
 @functools.cache
 def magnet_data() -> dict[str, Any]:
     """data/encoder_magnet.toml (bonded ferrite; Modelica Standard Library's PlasticHardFerrite, with ``source``)."""
-    return tomllib.loads(resources.files("quenchsim.bearings").joinpath(MAGNET_DATA).read_text("utf-8"))
+    return read_package_toml("quenchsim.bearings", MAGNET_DATA)
 
 
 def remanence_at_temperature_T(remanence_T: float, temperature_C: float, coefficient_per_K: float | None = None,

@@ -18,20 +18,19 @@ from __future__ import annotations
 
 import functools
 import math
-import tomllib
 from dataclasses import dataclass
-from importlib import resources
 from typing import cast
 
 import numpy as np
 
 from quenchsim.errors import require
+from quenchsim.inputs.reader import read_package_toml
 
 
 @functools.cache
 def crack_data() -> dict:
     """data/mode2_crack.toml (the paper's fits and SUJ2 data, each with its source)."""
-    return tomllib.loads(resources.files("quenchsim.bearings").joinpath("data/mode2_crack.toml").read_text("utf-8"))
+    return read_package_toml("quenchsim.bearings", "data/mode2_crack.toml")
 
 
 def _poly(coefficients: list[float], xi: np.ndarray | float) -> np.ndarray | float:

@@ -32,7 +32,8 @@ CASES = {"A": (ROOT / "cases" / "crb_outer_ring.toml", ("1", "2", "3")),
          "B": (ROOT / "cases" / "srb_outer_ring.toml", ("4", "5", "6"))}
 
 OLD_RESPONSE = Path(__file__).with_name("old_model_response.json")
-"""The old model's jet response (made by old_model_response.py with the code of commit bae6c38)."""
+"""The old model's jet response, computed once with the code of commit bae6c38 (by a script that ran only there and is
+kept in the history: the commit that added this note removed it)."""
 JET_SPEEDS_MM_S = {"id": (400.0, 540.0, 1000.0, 1440.0, 2000.0), "od": (1470.0, 1780.0, 3280.0, 5340.0, 10680.0)}
 """The reference conditions' range of jet speeds (Tables 1 and 4: ID 400-2000, OD 1470-10680 mm/s)."""
 GOLDSTEIN_CASES = ((61000.0, 6.0), (61000.0, 10.0), (124000.0, 7.75), (124000.0, 12.0))
@@ -204,7 +205,7 @@ def _inputs_hash() -> str:
     digest = hashlib.sha256()
     for cond in conds:
         case = load_case(path, cond)
-        _, htc = outline_htc(case.profile, case.quench.bath, spacing_m=5e-3)
+        _, htc = outline_htc(case.profile, case.bath, spacing_m=5e-3)
         inputs = {k: case.data.get(k) for k in ("material", "geometry", "mesh", "process", "quench", "probes")}
         digest.update(json.dumps(inputs, sort_keys=True, default=str).encode())
         digest.update(np.round(htc.h_W_m2K, 3).tobytes())
@@ -269,7 +270,7 @@ def bath_cost(case_path: Path, condition: str, calls: int = 2000) -> dict[str, A
     cooled = np.concatenate([f for n, f in section.boundaries.items() if n != "axis"])
     fe = AxisymmetricP2(section.mesh, cooled)
     points = cooled_surface_points(fe, section)
-    cfg = case.quench.bath
+    cfg = case.bath
     t0 = time.perf_counter()
     htc = boundary_htc(cfg, points)
     build = time.perf_counter() - t0
@@ -357,7 +358,7 @@ def run(workdir: Path) -> dict[str, Any]:
            "jets held: ring A from condition 1; ring B's ID sweep from condition 4 (OD 3280 mm/s: 540 -> 1440 is "
            "condition 4 -> 5) and its OD sweep from condition 5 (ID 1440 mm/s: 3280 -> 1470 is condition 5 -> 6). "
            f"Old model: the same sweep with the code of commit {resp['old_commit']} "
-           "(validation/bath/model/old_model_response.json, made by old_model_response.py).", ""]
+           "(validation/bath/model/old_model_response.json).", ""]
     for label in CASES:
         png = plot_jet_response(resp["new"][label], resp["old"][label],
                                 f"ring {label}: the bore against the ID jets, the OD against the OD jets "
@@ -389,7 +390,7 @@ def run(workdir: Path) -> dict[str, Any]:
         results = {}
         for cond in conds:
             case = load_case(path, cond)
-            points, htc = outline_htc(case.profile, case.quench.bath)
+            points, htc = outline_htc(case.profile, case.bath)
             results[cond] = (points, htc)
             png = plot_htc(htc, f"case {label} ({case.name}), condition {cond}: segment mean, band = min-max "
                                 f"over the segment", reports_dir / f"bath_htc_condition_{cond}.png")

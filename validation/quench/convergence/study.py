@@ -82,7 +82,7 @@ def page(metrics: dict[str, Any]) -> str:
            "phase change per step (`max_dX`, pearlite and bainite) drives the depth and dimension errors, `max_dT_K` the "
            "t(500 C) error. With backward Euler the limits had to be 20 K and 0.002 (max_dX = 0.1 was 1.6 mm off in "
            "depth and 0.03 mm in dimension; 0.02 was 0.45 mm off in depth); the BDF2 march holds the same tolerances "
-           "at 30 K and 0.02 (reports/bench.md). "
+           "at 30 K and 0.02 (docs/experiments/bench.md). "
            "Every validated number of case A is computed at the default limits, including the SUJ3 calibration "
            "point (HRC58 depth 5 mm), so this error is part of them."]
     return "\n".join(md)

@@ -55,7 +55,7 @@ def run(workdir: Path) -> dict:
            f"x{fine['total_s'] / coarse['total_s']:.1f} (time per dof per step ratio {growth:.2f}).",
            f"The time loop's cost per DOF per step (`loop_us_per_dof_step`, thermal + metallurgy + mechanics) ranges "
            f"over the meshes by a factor {loop_spread:.2f} (max/min). `python dev/bench.py` compares these timings with an "
-           "earlier commit side by side (reports/bench.md).", ""]
+           "earlier commit side by side (docs/experiments/bench.md).", ""]
     return {"rows": rows, "loop_cost_spread": loop_spread, "page_md": "\n".join(md) + "\n"}
 
 

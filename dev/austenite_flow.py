@@ -1,4 +1,6 @@
-"""Flow stress of hot austenite from published hot-deformation laws, for the austenite yield of a quench.
+"""Flow stress of hot austenite from published hot-deformation laws, for the austenite yield of a quench (a maintainer's
+tool: ``python dev/austenite_flow.py`` prints the austenite yield row of materials/SUJ2.mechanics.toml and
+SUJ3.mechanics.toml; the package reads those files, not this).
 
 Two laws, both fitted to measured hot tests (sources in ``materials/data/austenite_flow.toml``):
 
@@ -19,17 +21,19 @@ log-linearly to the 750 C value.
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from quenchsim.errors import InputError
+from quenchsim.inputs.reader import read_toml
 
 R_J_molK = 8.314462618
 """Molar gas constant, J/(mol K)."""
 
-DATA_FILE = Path(__file__).resolve().parents[2] / "materials" / "data" / "austenite_flow.toml"
+DATA_FILE = Path(__file__).resolve().parents[1] / "materials" / "data" / "austenite_flow.toml"
+"""The data file, in the repository beside dev/ (a maintainer's tool: the numbers it prints are written into the steels'
+mechanics files, which the package reads)."""
 
 
 def kozlowski_III_stress_MPa(T_C: float, strain: float, strain_rate_1_s: float, carbon_wt_pct: float,
@@ -107,8 +111,7 @@ def austenite_yield_table(data: dict[str, Any]) -> YieldTable:
 
 def load_data(path: Path = DATA_FILE) -> dict[str, Any]:
     """The austenite flow data file (TOML) as a dict."""
-    with open(path, "rb") as f:
-        return tomllib.load(f)
+    return read_toml(path, "austenite flow data")
 
 
 def _main() -> None:  # pragma: no cover - prints the material row
