@@ -84,11 +84,11 @@ class CountingProgress(RunProgress):
     """The bar on a clock that advances 0.1 s per thermal step, noting the step of each update."""
 
     def __init__(self, run):
-        super().__init__("ring", 1.0, enabled=False, clock=lambda: 0.1 * run.counts["steps"])
+        super().__init__("ring", 1.0, enabled=False, clock=lambda: 0.1 * run.counts.steps)
         self.run, self.updated_at = run, []
 
     def update(self, *args):
-        self.updated_at.append(self.run.counts["steps"])
+        self.updated_at.append(self.run.counts.steps)
         super().update(*args)
 
 
@@ -99,7 +99,7 @@ def test_the_estimate_is_updated_on_the_clock_and_every_step_is_priced(tmp_path)
     run.bar = CountingProgress(run)
     run.run()
     recorded = run.bar.time_left._seen[:run.bar.time_left._count]
-    assert recorded[-1, 1] == run.counts["steps"] and np.all(np.diff(recorded[:, 1]) == 1)
+    assert recorded[-1, 1] == run.counts.steps and np.all(np.diff(recorded[:, 1]) == 1)
     assert run.bar.updated_at[0] == 1 and set(np.diff(run.bar.updated_at)) == {round(UPDATE_EVERY_S / 0.1)}
     shown = np.array(run.bar.time_left.history)[:, 3]
     assert np.all(np.diff(shown[~np.isnan(shown)]) <= 0.0)
