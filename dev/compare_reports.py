@@ -3,7 +3,7 @@
     python dev/compare_reports.py OLD_REPORTS NEW_REPORTS [--rtol 1e-9] [--ignore time,load,...]
 
 Prints, per study, how many numbers are equal (within rtol), which differ (old -> new, relative change), which keys
-are only in one of them; timings, load averages and cache bookkeeping are ignored by their key names. A maintainer's
+are only in one of them; timings, load averages and cache bookkeeping are left out by the words of their key names. A maintainer's
 tool for "results unchanged" checks after a refactor; nothing in the package imports it.
 """
 from __future__ import annotations
@@ -11,10 +11,12 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 from pathlib import Path
 from typing import Any
 
-IGNORED = ("time", "wall", "load", "fingerprint", "cached", "cpu_s", "_s_per", "seconds", "elapsed", "out", "date")
+IGNORED = ("generated", "time", "wall", "load", "fingerprint", "cached", "cpu", "seconds", "elapsed", "out", "date")
+PREFIXES = ("inputs.",)  # the list of code and data files a study read
 
 
 def flatten(value: Any, prefix: str = "") -> dict[str, Any]:
@@ -39,7 +41,7 @@ def differs(a: Any, b: Any, rtol: float) -> bool:
     return not math.isclose(a, b, rel_tol=rtol, abs_tol=1e-12)
 
 
-def compare(old: Path, new: Path, rtol: float, ignore: tuple[str, ...]) -> int:
+def compare(old: Path, new: Path, rtol: float, ignore: set[str]) -> int:
     changed_studies = 0
     for path in sorted(new.glob("*.json")):
         before = old / path.name
@@ -48,13 +50,15 @@ def compare(old: Path, new: Path, rtol: float, ignore: tuple[str, ...]) -> int:
             continue
         a = flatten(json.loads(before.read_text()))
         b = flatten(json.loads(path.read_text()))
-        keep = [k for k in sorted(set(a) | set(b)) if not any(word in k.lower() for word in ignore)]
+        keys = sorted(set(a) | set(b))
+        keep = [k for k in keys if not k.startswith(PREFIXES) and not ignore & set(re.split(r"[._]", k.lower()))]
         only_old = [k for k in keep if k not in b]
         only_new = [k for k in keep if k not in a]
         diff = [k for k in keep if k in a and k in b and differs(a[k], b[k], rtol)]
         equal = len(keep) - len(only_old) - len(only_new) - len(diff)
         changed_studies += bool(diff or only_old or only_new)
-        print(f"{path.stem}: {equal} equal, {len(diff)} differ, {len(only_old)} only old, {len(only_new)} only new")
+        print(f"{path.stem}: {equal} equal, {len(diff)} differ, {len(only_old)} only old, {len(only_new)} only new "
+              f"({len(keys) - len(keep)} timing / bookkeeping keys left out)")
         for k in diff[:40]:
             x, y = a[k], b[k]
             rel = ""
@@ -71,9 +75,9 @@ def main() -> None:
     parser.add_argument("old", type=Path)
     parser.add_argument("new", type=Path)
     parser.add_argument("--rtol", type=float, default=1e-9)
-    parser.add_argument("--ignore", default=",".join(IGNORED), help="comma-separated words: keys containing one are skipped")
+    parser.add_argument("--ignore", default=",".join(IGNORED), help="comma-separated words: keys with one of them as a word (split at . and _) are left out")
     args = parser.parse_args()
-    n = compare(args.old, args.new, args.rtol, tuple(w for w in args.ignore.split(",") if w))
+    n = compare(args.old, args.new, args.rtol, {w for w in args.ignore.split(",") if w})
     print(f"{n} studies with a changed number")
 
 

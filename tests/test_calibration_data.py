@@ -19,7 +19,7 @@ import pytest
 import tomli_w
 
 from quenchsim.calibration import calibrate, free_input, parse_calibration
-from quenchsim.calibration.data import Observable, Term, read_term
+from quenchsim.calibration.data import Measurement, Observable, Term, read_term
 from quenchsim.calibration.likelihood import Likelihood
 from quenchsim.calibration.runs import request, run_requests
 from quenchsim.calibration.surrogate import Surrogate
@@ -248,3 +248,50 @@ def test_the_fast_prediction_is_scikit_learns():
     np.testing.assert_allclose(mean, ref_mean, rtol=0, atol=1e-10)
     np.testing.assert_allclose(sd, ref_sd, rtol=0, atol=1e-10)
     assert np.all(sd > 0) and np.max(np.abs(model.predict(u) - y)) < 0.05   # it interpolates its training data
+
+
+def _measurement(label: str, observable: Observable) -> Measurement:
+    return Measurement(kind="value", case="r", condition="1", label=label, source="test", group=None,
+                       observables=(observable,))
+
+
+def test_meets_is_within_two_sd_of_a_value_and_not_beyond_a_bound_by_more():
+    """A value datum 1.0 +- 0.1 is met at 0.8 and 1.2 (2 sd) and not at 0.79; a bound >= 0 soft by 0.5 is met down
+    to -1.0; a missing or non-finite run value never meets."""
+    from quenchsim.calibration.conflicts import meets
+    term = (Term("r", "1", "x"),)
+    value = Observable("v", term, value=1.0, sd=0.1)
+    assert meets(value, 0.8 + 1e-12) and meets(value, 1.2 - 1e-12) and not meets(value, 0.79) and not meets(value, 1.21)
+    bound = Observable("b", term, lower=0.0, sd=0.5)
+    assert meets(bound, -1.0) and meets(bound, 100.0) and not meets(bound, -1.01)
+    both = Observable("w", term, lower=4.0, upper=6.0, sd=0.5)
+    assert meets(both, 6.99) and not meets(both, 7.01) and not meets(both, 2.99)
+    assert not meets(value, None) and not meets(value, float("nan"))
+
+
+def test_cosatisfaction_counts_each_datum_each_pair_and_all_together():
+    """Three runs, two data (a = 0 +- 1, b = 10 +- 1): run 1 meets both, run 2 only a, run 3 neither: per datum 2
+    and 1, the pair 1, all 1, the best run first with nothing missed."""
+    from quenchsim.calibration.conflicts import cosatisfaction
+    a = _measurement("a", Observable("a", (Term("r", "1", "a"),), value=0.0, sd=1.0))
+    b = _measurement("b", Observable("b", (Term("r", "1", "b"),), value=10.0, sd=1.0))
+    runs = [{"a": 0.5, "b": 9.0}, {"a": -1.5, "b": 20.0}, {"a": 5.0, "b": None}]
+    out = cosatisfaction([a, b], runs, [[1.0], [2.0], [3.0]], best=2)
+    assert out["per_datum"] == {"a": 2, "b": 1} and out["all"] == 1 and out["most"] == 2 and out["runs"] == 3
+    assert out["pairs"] == [{"a": "a", "b": "b", "runs_a": 2, "runs_b": 1, "runs_both": 1}]
+    assert out["best_runs"][0] == {"met": 2, "missed": [], "factors": [1.0]}
+    assert out["best_runs"][1]["missed"] == ["b"]
+
+
+def test_spread_subset_takes_the_farthest_points_first():
+    """From a unit square's corners and its centre, 5 points: the centre first (nearest the median), then the four
+    corners; a subset is drawn from the samples and is the same for the same seed."""
+    from quenchsim.calibration.design import spread_subset
+    samples = np.array([[0.5, 0.5], [0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0], [0.45, 0.5], [0.5, 0.55]])
+    chosen = spread_subset(samples, 5, seed=1)
+    assert np.allclose(chosen[0], [0.5, 0.5])
+    assert {tuple(p) for p in chosen[1:]} == {(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)}
+    rng = np.random.default_rng(3)
+    many = rng.random((5000, 3))
+    assert np.array_equal(spread_subset(many, 8, seed=4), spread_subset(many, 8, seed=4))
+    assert all(any(np.array_equal(p, q) for q in many) for p in spread_subset(many, 8, seed=4))

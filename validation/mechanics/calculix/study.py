@@ -49,7 +49,7 @@ def _section(mesh_mm: float | None = None) -> tuple[Any, Any, Any, Any]:
     overrides = None if mesh_mm is None else {"mesh.size_mm": mesh_mm, "mesh.surface_size_mm": mesh_mm}
     case = load_case(CASE_A, "1", overrides)
     material = load_material(case.material)
-    built = build_section(case, material, None)
+    built = build_section(case, None)
     return material, case, built.hot, built.before_mesh
 
 
