@@ -3,7 +3,7 @@
     python dev/compare_reports.py OLD_REPORTS NEW_REPORTS [--rtol 1e-9] [--ignore time,load,...]
 
 Prints, per study, how many numbers are equal (within rtol), which differ (old -> new, relative change), which keys
-are only in one of them; timings, load averages and cache bookkeeping are left out by the words of their key names. A maintainer's
+are only in one of them; timings, load averages, cache bookkeeping and the rendered page text (page_md) are left out by the words of their key names. A maintainer's
 tool for "results unchanged" checks after a refactor; nothing in the package imports it.
 """
 from __future__ import annotations
@@ -15,7 +15,7 @@ import re
 from pathlib import Path
 from typing import Any
 
-IGNORED = ("generated", "time", "wall", "load", "fingerprint", "cached", "cpu", "seconds", "elapsed", "out", "date")
+IGNORED = ("generated", "page", "time", "wall", "load", "fingerprint", "cached", "cpu", "seconds", "elapsed", "out", "date")
 PREFIXES = ("inputs.",)  # the list of code and data files a study read
 
 
