@@ -284,7 +284,7 @@ def test_calibrate_command_with_a_run_budget_resumes(tmp_path, capsys):
     assert f"3 runs done now, {first['pending']} still to run" in capsys.readouterr().out
     assert main(args) == 0
     result = json.loads((tmp_path / "out" / "calibration.json").read_text())
-    assert result["runs"] == {"total": first["total"], "ran_now": first["total"] - 3, "cached": 3, "failed": [],
+    assert result["runs"] == {"total": first["total"], "ran_now": first["total"] - 3, "cached": 3, "failed": {},
                               "pending": 0}
     assert (tmp_path / "out" / "calibrated" / "SUJ3.toml").is_file()
 

@@ -374,8 +374,8 @@ def test_a_boiling_curve_has_a_film_collapse_temperature_and_convection_has_none
     ("crb_outer_ring.toml", "1", {"time.max_dX": 0.01}, "1.00 (0.81..1.67) with the martensite forecast; 1.00 (0.85..1.51) at the BDF2 limits; 1.00 (0.79..1.80); 1.00 (0.65..1.91) before", 0.95),
     ("crb_outer_ring.toml", "2", {}, "1.00 (0.79..1.76) with the martensite forecast; 0.96 (0.79..2.64) at the BDF2 limits; 1.00 (0.77..1.64); 1.00 (0.62..1.75) before", 0.95),
     ("crb_outer_ring.toml", "3", {}, "1.00 (1.02..1.95) updated every 0.5 s; 1.00 (0.70..1.65) with the martensite forecast; 1.00 (0.70..1.44) at the BDF2 limits; 1.00 (0.63..1.91); 0.65 (0.18..1.63) before", 0.95),
-    ("srb_outer_ring.toml", "4", {}, "1.00 (0.68..1.62) with the martensite forecast; 1.00 (0.78..1.55) at the BDF2 limits; 1.00 (0.88..1.80); 0.84 (0.55..3.23) before", 0.95),
-    ("srb_outer_ring.toml", "5", {}, "1.00 (0.89..1.81) with the martensite forecast; 0.98 (0.91..2.06) at the BDF2 limits; 1.00 (0.85..1.86); 0.85 (0.56..2.83) before", 0.95),
+    ("srb_outer_ring.toml", "4", {}, "0.93 (0.88..2.01) updated every 0.5 s, two runs; 1.00 (0.68..1.62) with the martensite forecast; 1.00 (0.78..1.55) at the BDF2 limits; 1.00 (0.88..1.80); 0.84 (0.55..3.23) before", 0.85),
+    ("srb_outer_ring.toml", "5", {}, "0.89-0.91 (1.05..2.75 / 1.15..3.15) updated every 0.5 s, two runs; 1.00 (0.89..1.81) with the martensite forecast; 0.98 (0.91..2.06) at the BDF2 limits; 1.00 (0.85..1.86); 0.85 (0.56..2.83) before", 0.85),
     ("srb_outer_ring.toml", "6", {}, "0.90 (1.15..2.04) updated every 0.5 s; 0.95 (0.93..1.64) with the martensite forecast; 0.95 (0.92..1.85) at the BDF2 limits; 0.91-0.96 (0.95..2.06) in three runs, 9-10 steps without an estimate while "
                                      "the pace after the first wetting is measured; 0.48 (0.27..2.16) before", 0.85),
     ("peer_race_100Cr6.toml", None, {}, "1.00 (0.68..1.14) updated every 0.5 s; 1.00 (0.80..1.34) with the martensite forecast; 0.07 (0.24..0.65) at the BDF2 limits before it (the split stress steps, 3 per thermal step, not counted); 1.00 (0.64..1.55); 1.00 (0.95..1.61) before", 0.95),
@@ -389,7 +389,9 @@ def test_the_time_left_is_within_a_factor_2_for_most_of_every_shipped_quench(tmp
     left for at least ``required`` of the updates between 10 % and 90 % of the run (CPU clock; updated every
     :data:`UPDATE_EVERY_S`, so each update stands for the same CPU time; before issue 48 every step was one; an update
     without an estimate counts as a miss; ring B condition 6, whose film's end is estimated late and whose misses sit near 2x,
-    varies 0.91-0.96 from run to run). ``measured``: the share and the range of estimate / real (with the martensite front's stress
+    varies 0.91-0.96 from run to run; ring B conditions 4 and 5 fell from 1.00 to 0.89-0.93 when the updates became
+time-based in issue 48: each update now stands for 0.5 s of CPU, so the film stage's overestimates (up to 2.75x, before
+the wetting front's pace is measured) weigh by the time they last, not by their few steps). ``measured``: the share and the range of estimate / real (with the martensite front's stress
     steps forecast, session 14, updated every 0.5 s since issue 48; at the BDF2 limits without it, session 13; session 12; then the model before it: the
     film's steps at its own mean pace, the austenite left as the pearlite/bainite steps before the limit held, the
     steps priced at the run's mean cost; docs/experiments/martensite_front_time_left.md). The agitated baths missed: their film lets the step grow to
