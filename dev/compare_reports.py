@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import re
 from pathlib import Path
 from typing import Any
+
+from bench import relative_difference  # dev/ is on the path when this runs as a script
 
 IGNORED = ("generated", "page", "time", "wall", "load", "fingerprint", "cached", "cpu", "seconds", "elapsed", "out", "date")
 PREFIXES = ("inputs.",)  # the list of code and data files a study read
@@ -34,11 +35,10 @@ def flatten(value: Any, prefix: str = "") -> dict[str, Any]:
 
 
 def differs(a: Any, b: Any, rtol: float) -> bool:
+    """Numbers by their relative difference (dev/bench.py's, NaN equal to NaN), anything else by equality."""
     if isinstance(a, bool) or isinstance(b, bool) or not isinstance(a, (int, float)) or not isinstance(b, (int, float)):
         return a != b
-    if math.isnan(a) and math.isnan(b):
-        return False
-    return not math.isclose(a, b, rel_tol=rtol, abs_tol=1e-12)
+    return relative_difference(float(a), float(b)) > rtol and abs(a - b) > 1e-12
 
 
 def compare(old: Path, new: Path, rtol: float, ignore: set[str]) -> int:
